@@ -1,0 +1,64 @@
+#pragma once
+// The whole per-frame pipeline of the paper, in fixed memory: every buffer
+// is allocated by the constructor, detect() allocates nothing, throws
+// nothing and does bounded work.
+#include <cstdint>
+
+#include "estimator/config.hpp"
+#include "estimator/organized_cloud.hpp"
+#include "estimator/pixel_scale.hpp"
+#include "estimator/random.hpp"
+#include "estimator/types.hpp"
+#include "estimator/workspace.hpp"
+
+namespace estimator {
+
+// Injected time source for the frame budget (monotonic microseconds).
+class TimeSource {
+ public:
+  virtual ~TimeSource() = default;
+  virtual std::int64_t now_us() const = 0;
+};
+
+// std::chrono::steady_clock.
+class SteadyTimeSource final : public TimeSource {
+ public:
+  std::int64_t now_us() const override;
+};
+
+enum class Method : std::uint8_t {
+  kProposed,  // the paper's detector
+  kBasic,     // plane RANSAC, then line RANSAC on the plane's outliers
+};
+const char* to_string(Method method);
+
+class HandrailDetector {
+ public:
+  // The config must pass validate(); time may be null (the steady clock).
+  explicit HandrailDetector(const DetectorConfig& cfg, const TimeSource* time = nullptr);
+
+  HandrailDetection detect(const OrganizedCloud& cloud, Method method = Method::kProposed);
+
+  const DetectorConfig& config() const { return cfg_; }
+  // The last frame's per-pixel flags and sets, for debug images.
+  const Workspace& workspace() const { return ws_; }
+  const Plane& last_wall() const { return wall_; }
+
+ private:
+  bool over_budget(std::int64_t start_us) const;
+  void select_valid_points(const OrganizedCloud& cloud);
+  void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
+  void run_basic(const OrganizedCloud& cloud, HandrailDetection* out);
+  void fill_pose(const Eigen::Vector3f& p_cam_center, const Eigen::Matrix3f& R_cam_handrail,
+                 HandrailDetection* out) const;
+
+  DetectorConfig cfg_;
+  SteadyTimeSource steady_;
+  const TimeSource* time_;
+  Workspace ws_;
+  Random rng_;
+  Plane wall_;
+  PixelScale scale_;
+};
+
+}  // namespace estimator

@@ -1,0 +1,29 @@
+#pragma once
+// Step 2: the three tests that keep only points that look like a handrail
+// bar standing off the wall.
+#include "estimator/config.hpp"
+#include "estimator/organized_cloud.hpp"
+#include "estimator/pixel_scale.hpp"
+#include "estimator/types.hpp"
+#include "estimator/workspace.hpp"
+
+namespace estimator {
+
+// Gap distance test (eq. 1): points whose distance from the wall is that of
+// the bar's visible surface. ws.valid, ws.signed_distance_m -> ws.gap.
+void gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, Workspace& ws);
+
+// Cross point test (eqs. 2, 3): both probes to either side of the pixel, in
+// image x or in image y, land on the wall. Probe offsets widen on the side
+// where the wall's tilt would put a leg. ws.gap -> ws.cross, and the
+// kFlagCrossX / kFlagCrossY bits say which direction passed.
+void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                      const PixelScale& scale, Workspace& ws);
+
+// Side width test (eq. 4): along each direction that passed the cross test,
+// the raised run through the pixel must be as wide as the bar. ws.cross ->
+// ws.side.
+void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                     const PixelScale& scale, Workspace& ws);
+
+}  // namespace estimator

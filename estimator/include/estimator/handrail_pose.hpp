@@ -1,0 +1,51 @@
+#pragma once
+// Step 4: the handrail frame (eq. 5), the bar's centre line, its end points
+// and state, and the robot's target pose.
+#include <Eigen/Core>
+
+#include "estimator/config.hpp"
+#include "estimator/organized_cloud.hpp"
+#include "estimator/pixel_scale.hpp"
+#include "estimator/types.hpp"
+#include "estimator/workspace.hpp"
+
+namespace estimator {
+
+// The bar's centre line: a point on it and its unit direction, in the
+// camera frame, with the direction lying in the wall plane.
+struct CenterLine {
+  Eigen::Vector3f point = Eigen::Vector3f::Zero();
+  Eigen::Vector3f axis = Eigen::Vector3f::Zero();
+  float t_min_m = 0.0f;  // visible extent of the inliers along the axis
+  float t_max_m = 0.0f;
+};
+
+// Eq. 5: x = wall normal, z = line direction projected onto the wall,
+// y = z x x. The axis sign is fixed so that it points up the image (or right
+// for a bar nearer horizontal), which makes results comparable frame to frame.
+Eigen::Matrix3f handrail_frame(const Eigen::Vector3f& wall_normal,
+                               const Eigen::Vector3f& line_direction);
+
+// Fits the centre line to the line inliers: direction by least squares in
+// the wall plane, position across the bar from the midpoints of its visible
+// silhouette (unbiased for round and rounded-rectangle bars seen at an
+// angle), height from the wall from the configured geometry.
+bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                          const Plane& wall, const IndexList& inliers, CenterLine* line);
+
+// Walks the image past each extreme inlier along the bar. An end is seen
+// when the walk leaves the bar and meets the wall; it is not seen when the
+// walk leaves the image, meets invalid pixels or something in front.
+// end_t_m receives the bar's extent along the axis at seen ends.
+void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
+                 const Workspace& ws, const IndexList& inliers, const CenterLine& line,
+                 bool end_seen[2], float end_t_m[2]);
+
+HandrailState handrail_state(const bool end_seen[2]);
+
+// p_g = p_c + d_c v_P; the target's rotation equals the handrail frame.
+void target_pose(const DetectorConfig& cfg, const Eigen::Vector3f& p_cam_center,
+                 const Eigen::Matrix3f& R_cam_handrail, Eigen::Vector3f* p_cam_target,
+                 Eigen::Matrix3f* R_cam_target);
+
+}  // namespace estimator

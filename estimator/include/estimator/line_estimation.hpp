@@ -1,0 +1,55 @@
+#pragma once
+// Step 3: handrail candidates as two perpendicular lines (Algorithm 2),
+// clustering along each line with the cluster distance d_r, and selection by
+// the gripper's angle (Algorithm 1).
+#include <Eigen/Core>
+
+#include "estimator/config.hpp"
+#include "estimator/organized_cloud.hpp"
+#include "estimator/random.hpp"
+#include "estimator/types.hpp"
+#include "estimator/workspace.hpp"
+
+namespace estimator {
+
+struct LineModel {
+  bool valid = false;
+  Eigen::Vector3f point = Eigen::Vector3f::Zero();
+  Eigen::Vector3f direction = Eigen::Vector3f::Zero();  // unit
+  float psi_rad = 0.0f;  // atan(|dx| / |dy|): 0 along image y
+  std::uint32_t score = 0;
+};
+
+// The line's angle to the image's y axis, in [0, pi/2].
+float line_angle_psi(const Eigen::Vector3f& direction);
+
+// Algorithm 2: the two most supported lines, the weaker one kept near
+// perpendicular to the stronger. Points are taken from ws.side, projected
+// onto the wall so that depth noise does not blur the lines.
+void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                  const Plane& wall, Random& rng, const Workspace& ws,
+                                  LineModel candidates[2]);
+
+// The points of ws.side within the inlier distance of the line, into out.
+void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                          const Plane& wall, const LineModel& line, const Workspace& ws,
+                          IndexList& out);
+
+struct Cluster {
+  std::uint32_t count = 0;
+  float t_min_m = 0.0f;  // along the line, from its point
+  float t_max_m = 0.0f;
+  float length_m() const { return t_max_m - t_min_m; }
+};
+
+// Sorts the inliers along the line and keeps the most populated run whose
+// consecutive points are closer than d_r; `inliers` is reduced to that run.
+Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                           const LineModel& line, IndexList& inliers, float* t_scratch);
+
+// Algorithm 1, line 10: the candidate closest in angle to the gripper.
+// Returns -1 when neither is usable.
+int select_by_gripper_angle(const DetectorConfig& cfg, const LineModel candidates[2],
+                            const bool usable[2]);
+
+}  // namespace estimator

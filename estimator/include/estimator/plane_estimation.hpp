@@ -1,0 +1,27 @@
+#pragma once
+// Step 1: the wall. RANSAC over triples of valid points, scored on a fixed
+// subsample, then two least-squares refits on all points within the inlier
+// distance. Writes every valid pixel's signed distance to the wall.
+#include "estimator/config.hpp"
+#include "estimator/organized_cloud.hpp"
+#include "estimator/random.hpp"
+#include "estimator/types.hpp"
+#include "estimator/workspace.hpp"
+
+namespace estimator {
+
+struct PlaneEstimate {
+  bool found = false;
+  Plane plane;
+  std::uint32_t inliers = 0;
+};
+
+// Least-squares plane through points (smallest eigenvector of their
+// covariance), oriented so that the camera is on its positive side.
+bool fit_plane_least_squares(const OrganizedCloud& cloud, const std::int32_t* indices,
+                             std::size_t count, Plane* plane);
+
+PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                             Random& rng, Workspace& ws);
+
+}  // namespace estimator

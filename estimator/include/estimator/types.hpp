@@ -1,0 +1,70 @@
+#pragma once
+#include <Eigen/Core>
+#include <cstdint>
+
+namespace estimator {
+
+// Handrail state by the number of end points seen (the paper's Figure 10).
+enum class HandrailState : std::uint8_t {
+  kNoHandrail,  // NH
+  kBothEnds,    // BE
+  kOneEnd,      // OE
+  kNoEnd,       // NE
+};
+const char* to_string(HandrailState state);  // "NH", "BE", "OE", "NE"
+
+// Why a frame produced what it did.
+enum class DetectStatus : std::uint8_t {
+  kFound,
+  kEmptyFrame,         // no valid points in range
+  kFrameTooLarge,      // larger than the size the detector was built for
+  kNoPlane,            // no wall with enough support
+  kNoCandidates,       // nothing passed the handrail tests
+  kNoLine,             // no line of handrail length
+  kDeadlineMissed,     // over the per-frame budget; result dropped
+};
+const char* to_string(DetectStatus status);
+
+// A wall: n . p + d = 0 with |n| = 1 and the camera on the positive side
+// (d > 0), so signed_distance > 0 means "in front of the wall".
+struct Plane {
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+  float d = 0.0f;
+  float signed_distance(const Eigen::Vector3f& p) const { return normal.dot(p) + d; }
+};
+
+// Per-stage counts, for debugging and the debug images.
+struct StageCounts {
+  std::uint32_t valid = 0;
+  std::uint32_t plane_inliers = 0;
+  std::uint32_t gap = 0;
+  std::uint32_t cross = 0;
+  std::uint32_t side = 0;
+  std::uint32_t line = 0;
+};
+
+struct HandrailDetection {
+  DetectStatus status = DetectStatus::kEmptyFrame;
+  HandrailState state = HandrailState::kNoHandrail;
+  std::uint64_t frame_id = 0;
+  std::int64_t capture_time_us = 0;
+  // The fields below are meaningful only when status == kFound; they are
+  // zeroed otherwise so no stale pose leaks into a "not found" result.
+  Eigen::Vector3f p_cam_center = Eigen::Vector3f::Zero();   // on the bar's centre line
+  Eigen::Matrix3f R_cam_handrail = Eigen::Matrix3f::Zero(); // columns: normal, y, axis
+  Eigen::Vector3f ends_cam[2] = {Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero()};
+  bool end_seen[2] = {false, false};  // [0] at -axis, [1] at +axis
+  float visible_length_m = 0.0f;      // extent of the line inliers
+  float beam_length_m = 0.0f;         // between ends when both are seen
+  Eigen::Vector3f p_cam_target = Eigen::Vector3f::Zero();
+  Eigen::Matrix3f R_cam_target = Eigen::Matrix3f::Zero();
+  std::uint32_t inliers = 0;
+  StageCounts counts;
+  std::int64_t processing_time_us = 0;
+
+  Eigen::Vector3f axis() const { return R_cam_handrail.col(2); }
+  Eigen::Vector3f normal() const { return R_cam_handrail.col(0); }
+  int num_ends() const { return (end_seen[0] ? 1 : 0) + (end_seen[1] ? 1 : 0); }
+};
+
+}  // namespace estimator

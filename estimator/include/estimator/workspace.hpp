@@ -1,0 +1,71 @@
+#pragma once
+// Every buffer the detector touches while it processes a frame, sized once
+// from the largest frame. Nothing here grows after construction.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+namespace estimator {
+
+// A list of pixel indices with a fixed capacity. push() refuses (returns
+// false) rather than grow.
+class IndexList {
+ public:
+  explicit IndexList(std::size_t capacity = 0) { reset_capacity(capacity); }
+  void reset_capacity(std::size_t capacity) {
+    data_.reset(capacity ? new std::int32_t[capacity] : nullptr);
+    capacity_ = capacity;
+    size_ = 0;
+  }
+  bool push(std::int32_t index) {
+    if (size_ >= capacity_) return false;
+    data_[size_++] = index;
+    return true;
+  }
+  void clear() { size_ = 0; }
+  void resize_down(std::size_t n) { size_ = n < size_ ? n : size_; }
+  std::size_t size() const { return size_; }
+  std::size_t capacity() const { return capacity_; }
+  bool empty() const { return size_ == 0; }
+  std::int32_t operator[](std::size_t i) const { return data_[i]; }
+  std::int32_t& operator[](std::size_t i) { return data_[i]; }
+  std::int32_t* begin() { return data_.get(); }
+  std::int32_t* end() { return data_.get() + size_; }
+  const std::int32_t* begin() const { return data_.get(); }
+  const std::int32_t* end() const { return data_.get() + size_; }
+
+ private:
+  std::unique_ptr<std::int32_t[]> data_;
+  std::size_t capacity_ = 0;
+  std::size_t size_ = 0;
+};
+
+// Per-pixel flags set by the stages (bit per stage), for debug images.
+enum PixelFlag : std::uint8_t {
+  kFlagValid = 1u << 0,
+  kFlagPlane = 1u << 1,
+  kFlagGap = 1u << 2,
+  kFlagCrossX = 1u << 3,
+  kFlagCrossY = 1u << 4,
+  kFlagSide = 1u << 5,
+  kFlagLine = 1u << 6,
+};
+
+struct Workspace {
+  explicit Workspace(std::size_t max_pixels);
+
+  std::size_t max_pixels;
+  std::unique_ptr<float[]> signed_distance_m;  // to the wall; NaN if invalid
+  std::unique_ptr<std::uint8_t[]> flags;       // PixelFlag bits
+  std::unique_ptr<float[]> line_t_m;           // position along a line
+  IndexList valid;
+  IndexList gap;
+  IndexList cross;
+  IndexList side;
+  IndexList line[2];
+  IndexList scratch;
+
+  std::size_t bytes() const;
+};
+
+}  // namespace estimator

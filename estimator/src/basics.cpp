@@ -1,0 +1,103 @@
+// Small shared pieces: validity, configuration presets, enum strings, the
+// workspace's allocation.
+#include <cmath>
+
+#include "estimator/config.hpp"
+#include "estimator/organized_cloud.hpp"
+#include "estimator/types.hpp"
+#include "estimator/workspace.hpp"
+
+namespace estimator {
+
+bool is_valid_point(const CloudPoint& p) {
+  return p.confidence != 0 && std::isfinite(p.x_m) && std::isfinite(p.y_m) &&
+         std::isfinite(p.z_m) && p.z_m > 0.0f;
+}
+
+HandrailGeometry paper_round_handrail(float bar_length_m) {
+  // Legs l_H = 6.5 cm, bar b_D = 3.5 cm: centre line at l_H + b_D / 2.
+  return {0.035f, 0.035f, 0.065f + 0.0175f, bar_length_m};
+}
+
+HandrailGeometry iss_handrail(float bar_length_m) { return {0.019f, 0.035f, 0.061f, bar_length_m}; }
+
+float gap_min_m(const DetectorConfig& cfg) {
+  return cfg.handrail.bar_center_offset_m - 0.5f * cfg.handrail.bar_depth_m - cfg.gap_margin_m;
+}
+float gap_max_m(const DetectorConfig& cfg) {
+  return cfg.handrail.bar_center_offset_m + 0.5f * cfg.handrail.bar_depth_m + cfg.gap_margin_m;
+}
+float cross_distance_m(const DetectorConfig& cfg) {
+  const float b_d = std::fmax(cfg.handrail.bar_width_m, cfg.handrail.bar_depth_m);
+  return std::sqrt(2.0f) * b_d + cfg.cross_delta_m;
+}
+
+const char* validate(const DetectorConfig& c) {
+  const HandrailGeometry& h = c.handrail;
+  if (!(h.bar_width_m > 0.005f && h.bar_width_m < 0.2f)) return "handrail.bar_width_m";
+  if (!(h.bar_depth_m > 0.005f && h.bar_depth_m < 0.2f)) return "handrail.bar_depth_m";
+  if (!(h.bar_center_offset_m > 0.5f * h.bar_depth_m && h.bar_center_offset_m < 0.5f))
+    return "handrail.bar_center_offset_m";
+  if (!(h.bar_length_m > 0.05f && h.bar_length_m < 3.0f)) return "handrail.bar_length_m";
+  if (!(c.min_range_m > 0.0f && c.max_range_m > c.min_range_m)) return "max_range_m";
+  if (c.plane_iterations == 0 || c.plane_iterations > 10000) return "plane_iterations";
+  if (c.plane_score_samples < 50) return "plane_score_samples";
+  if (!(c.plane_inlier_m > 0.0f)) return "plane_inlier_m";
+  if (!(c.plane_min_inlier_fraction > 0.0f && c.plane_min_inlier_fraction < 1.0f))
+    return "plane_min_inlier_fraction";
+  if (!(c.gap_margin_m >= 0.0f)) return "gap_margin_m";
+  if (gap_min_m(c) <= c.wall_tolerance_m) return "wall_tolerance_m";
+  if (!(c.side_width_min_ratio > 0.0f && c.side_width_max_ratio > c.side_width_min_ratio))
+    return "side_width_max_ratio";
+  if (c.line_iterations == 0 || c.line_iterations > 10000) return "line_iterations";
+  if (!(c.line_inlier_m > 0.0f)) return "line_inlier_m";
+  if (!(c.cluster_gap_m > 0.0f)) return "cluster_gap_m";
+  if (!(c.beam_length_min_ratio > 0.0f && c.beam_length_max_ratio > c.beam_length_min_ratio))
+    return "beam_length_max_ratio";
+  if (!(c.end_search_m > 0.0f)) return "end_search_m";
+  if (c.max_width == 0 || c.max_height == 0 || c.max_width > 4096 || c.max_height > 4096)
+    return "max_width";
+  if (c.budget_us < 0) return "budget_us";
+  return nullptr;
+}
+
+const char* to_string(HandrailState state) {
+  switch (state) {
+    case HandrailState::kNoHandrail: return "NH";
+    case HandrailState::kBothEnds: return "BE";
+    case HandrailState::kOneEnd: return "OE";
+    case HandrailState::kNoEnd: return "NE";
+  }
+  return "??";
+}
+
+const char* to_string(DetectStatus status) {
+  switch (status) {
+    case DetectStatus::kFound: return "FOUND";
+    case DetectStatus::kEmptyFrame: return "EMPTY_FRAME";
+    case DetectStatus::kFrameTooLarge: return "FRAME_TOO_LARGE";
+    case DetectStatus::kNoPlane: return "NO_PLANE";
+    case DetectStatus::kNoCandidates: return "NO_CANDIDATES";
+    case DetectStatus::kNoLine: return "NO_LINE";
+    case DetectStatus::kDeadlineMissed: return "DEADLINE_MISSED";
+  }
+  return "UNKNOWN";
+}
+
+Workspace::Workspace(std::size_t n)
+    : max_pixels(n),
+      signed_distance_m(new float[n]),
+      flags(new std::uint8_t[n]),
+      line_t_m(new float[n]),
+      valid(n),
+      gap(n),
+      cross(n),
+      side(n),
+      line{IndexList(n), IndexList(n)},
+      scratch(n) {}
+
+std::size_t Workspace::bytes() const {
+  return max_pixels * (sizeof(float) * 2 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7);
+}
+
+}  // namespace estimator

@@ -1,0 +1,178 @@
+#include "estimator/handrail_detector.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "estimator/handrail_filters.hpp"
+#include "estimator/handrail_pose.hpp"
+#include "estimator/line_estimation.hpp"
+#include "estimator/plane_estimation.hpp"
+
+namespace estimator {
+
+std::int64_t SteadyTimeSource::now_us() const {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+const char* to_string(Method method) {
+  return method == Method::kProposed ? "proposed" : "basic";
+}
+
+HandrailDetector::HandrailDetector(const DetectorConfig& cfg, const TimeSource* time)
+    : cfg_(cfg),
+      time_(time ? time : &steady_),
+      ws_(static_cast<std::size_t>(cfg.max_width) * cfg.max_height),
+      rng_(cfg.seed) {}
+
+bool HandrailDetector::over_budget(std::int64_t start_us) const {
+  return cfg_.budget_us > 0 && time_->now_us() - start_us > cfg_.budget_us;
+}
+
+void HandrailDetector::select_valid_points(const OrganizedCloud& cloud) {
+  const std::size_t n = cloud.size();
+  std::memset(ws_.flags.get(), 0, n);
+  ws_.valid.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const CloudPoint& p = cloud.points[i];
+    ws_.signed_distance_m[i] = NAN;
+    if (is_valid_point(p) && p.z_m >= cfg_.min_range_m && p.z_m <= cfg_.max_range_m) {
+      ws_.flags[i] = kFlagValid;
+      ws_.valid.push(static_cast<std::int32_t>(i));
+    }
+  }
+}
+
+void HandrailDetector::fill_pose(const Eigen::Vector3f& p_cam_center,
+                                 const Eigen::Matrix3f& R_cam_handrail,
+                                 HandrailDetection* out) const {
+  out->status = DetectStatus::kFound;
+  out->p_cam_center = p_cam_center;
+  out->R_cam_handrail = R_cam_handrail;
+  target_pose(cfg_, p_cam_center, R_cam_handrail, &out->p_cam_target, &out->R_cam_target);
+}
+
+HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method method) {
+  const std::int64_t start_us = time_->now_us();
+  HandrailDetection out;
+  out.frame_id = cloud.frame_id;
+  out.capture_time_us = cloud.capture_time_us;
+  if (cloud.width > cfg_.max_width || cloud.height > cfg_.max_height ||
+      cloud.size() > ws_.max_pixels) {
+    out.status = DetectStatus::kFrameTooLarge;
+  } else if (cloud.size() == 0 || cloud.points == nullptr) {
+    out.status = DetectStatus::kEmptyFrame;
+  } else {
+    // Seeded from the frame id: a frame always gives the same answer.
+    rng_.reseed(cfg_.seed ^ (cloud.frame_id * 0x9e3779b97f4a7c15ull));
+    select_valid_points(cloud);
+    out.counts.valid = static_cast<std::uint32_t>(ws_.valid.size());
+    if (ws_.valid.size() < 3) {
+      out.status = DetectStatus::kEmptyFrame;
+    } else if (method == Method::kProposed) {
+      run_proposed(cloud, start_us, &out);
+    } else {
+      run_basic(cloud, &out);
+    }
+  }
+  if (out.status == DetectStatus::kFound && over_budget(start_us)) {
+    out.status = DetectStatus::kDeadlineMissed;
+  }
+  if (out.status != DetectStatus::kFound) {
+    // No pose may survive into a "not found" result.
+    HandrailDetection empty;
+    empty.status = out.status;
+    empty.frame_id = out.frame_id;
+    empty.capture_time_us = out.capture_time_us;
+    empty.counts = out.counts;
+    out = empty;
+  }
+  out.processing_time_us = time_->now_us() - start_us;
+  return out;
+}
+
+void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t start_us,
+                                    HandrailDetection* out) {
+  scale_ = estimate_pixel_scale(cloud, ws_.valid);
+  const PlaneEstimate plane = estimate_plane(cloud, cfg_, rng_, ws_);
+  if (!plane.found || !scale_.ok) {
+    out->status = DetectStatus::kNoPlane;
+    return;
+  }
+  wall_ = plane.plane;
+  out->counts.plane_inliers = plane.inliers;
+  if (over_budget(start_us)) {
+    out->status = DetectStatus::kDeadlineMissed;
+    return;
+  }
+
+  gap_distance_test(cloud, cfg_, ws_);
+  cross_point_test(cloud, cfg_, wall_, scale_, ws_);
+  side_width_test(cloud, cfg_, scale_, ws_);
+  out->counts.gap = static_cast<std::uint32_t>(ws_.gap.size());
+  out->counts.cross = static_cast<std::uint32_t>(ws_.cross.size());
+  out->counts.side = static_cast<std::uint32_t>(ws_.side.size());
+  if (ws_.side.size() < cfg_.min_line_inliers) {
+    out->status = DetectStatus::kNoCandidates;
+    return;
+  }
+  if (over_budget(start_us)) {
+    out->status = DetectStatus::kDeadlineMissed;
+    return;
+  }
+
+  LineModel candidates[2];
+  estimate_handrail_candidates(cloud, cfg_, wall_, rng_, ws_, candidates);
+  bool usable[2] = {false, false};
+  CenterLine lines[2];
+  bool ends[2][2] = {};
+  float end_t[2][2] = {};
+  const float length_m = cfg_.handrail.bar_length_m;
+  for (int k = 0; k < 2; ++k) {
+    if (!candidates[k].valid) continue;
+    IndexList& inliers = ws_.line[k];
+    collect_line_inliers(cloud, cfg_, wall_, candidates[k], ws_, inliers);
+    const Cluster cluster = cluster_along_line(cloud, cfg_, candidates[k], inliers, ws_.line_t_m.get());
+    if (cluster.count < cfg_.min_line_inliers) continue;
+    if (!estimate_center_line(cloud, cfg_, wall_, inliers, &lines[k])) continue;
+    detect_ends(cloud, cfg_, scale_, ws_, inliers, lines[k], ends[k], end_t[k]);
+    // The beam-length check of Algorithm 1 applies in full only when both
+    // ends are seen; a bar that runs out of view need only be long enough
+    // not to be clutter, and never longer than a handrail.
+    const float extent = end_t[k][1] - end_t[k][0];
+    if (ends[k][0] && ends[k][1]) {
+      usable[k] = extent >= cfg_.beam_length_min_ratio * length_m &&
+                  extent <= cfg_.beam_length_max_ratio * length_m;
+    } else {
+      usable[k] = extent >= cfg_.min_visible_length_m &&
+                  extent <= cfg_.beam_length_max_ratio * length_m;
+    }
+  }
+  const int chosen = select_by_gripper_angle(cfg_, candidates, usable);
+  if (chosen < 0) {
+    out->status = DetectStatus::kNoLine;
+    return;
+  }
+  const CenterLine& line = lines[chosen];
+  const IndexList& inliers = ws_.line[chosen];
+  for (std::int32_t i : inliers) ws_.flags[i] |= kFlagLine;
+  out->counts.line = static_cast<std::uint32_t>(inliers.size());
+  out->inliers = out->counts.line;
+
+  const Eigen::Matrix3f R = handrail_frame(wall_.normal, line.axis);
+  for (int e = 0; e < 2; ++e) {
+    out->end_seen[e] = ends[chosen][e];
+    out->ends_cam[e] = line.point + end_t[chosen][e] * line.axis;
+  }
+  out->state = handrail_state(out->end_seen);
+  out->visible_length_m = end_t[chosen][1] - end_t[chosen][0];
+  out->beam_length_m = out->state == HandrailState::kBothEnds ? out->visible_length_m : 0.0f;
+  // Both ends seen: the centre is midway between them. Otherwise the middle
+  // of what is visible (the paper's Tr2); the tracker refines it over frames.
+  const float t_center = 0.5f * (end_t[chosen][0] + end_t[chosen][1]);
+  fill_pose(line.point + t_center * line.axis, R, out);
+}
+
+}  // namespace estimator
