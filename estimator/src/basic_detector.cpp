@@ -2,6 +2,7 @@
 // then one line by RANSAC through everything in front of the wall. No
 // handrail-shape tests, no clustering, no end detection.
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "estimator/handrail_detector.hpp"

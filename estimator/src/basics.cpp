@@ -51,10 +51,12 @@ const char* validate(const DetectorConfig& c) {
     return "side_width_max_ratio";
   if (c.line_iterations == 0 || c.line_iterations > 10000) return "line_iterations";
   if (!(c.line_inlier_m > 0.0f)) return "line_inlier_m";
+  if (c.line_attempts == 0 || c.line_attempts > 32) return "line_attempts";
   if (!(c.cluster_gap_m > 0.0f)) return "cluster_gap_m";
   if (!(c.beam_length_min_ratio > 0.0f && c.beam_length_max_ratio > c.beam_length_min_ratio))
     return "beam_length_max_ratio";
   if (!(c.end_search_m > 0.0f)) return "end_search_m";
+  if (!(c.front_height_tolerance_m > 0.0f)) return "front_height_tolerance_m";
   if (c.max_width == 0 || c.max_height == 0 || c.max_width > 4096 || c.max_height > 4096)
     return "max_width";
   if (c.budget_us < 0) return "budget_us";
@@ -94,10 +96,11 @@ Workspace::Workspace(std::size_t n)
       cross(n),
       side(n),
       line{IndexList(n), IndexList(n)},
-      scratch(n) {}
+      scratch(n),
+      values(new float[n]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 2 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7);
+  return max_pixels * (sizeof(float) * 3 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7);
 }
 
 }  // namespace estimator

@@ -93,6 +93,28 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   return out;
 }
 
+bool HandrailDetector::verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
+                                        const IndexList& points, IndexList& inliers,
+                                        CenterLine* line, bool ends[2], float end_t[2]) {
+  collect_line_inliers(cloud, cfg_, wall_, candidate, points, inliers);
+  const Cluster cluster = cluster_along_line(cloud, cfg_, candidate, inliers, ws_.line_t_m.get());
+  if (cluster.count < cfg_.min_line_inliers) return false;
+  float front_m = 0.0f;
+  if (!bar_front_height_test(cfg_, ws_, inliers, &front_m)) return false;
+  if (!estimate_center_line(cloud, cfg_, wall_, inliers, line)) return false;
+  detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, ends, end_t);
+  // The beam-length check of Algorithm 1 applies in full only when both
+  // ends are seen; a bar that runs out of view need only be long enough
+  // not to be clutter, and never longer than a handrail.
+  const float length_m = cfg_.handrail.bar_length_m;
+  const float extent = end_t[1] - end_t[0];
+  if (ends[0] && ends[1]) {
+    return extent >= cfg_.beam_length_min_ratio * length_m &&
+           extent <= cfg_.beam_length_max_ratio * length_m;
+  }
+  return extent >= cfg_.min_visible_length_m && extent <= cfg_.beam_length_max_ratio * length_m;
+}
+
 void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t start_us,
                                     HandrailDetection* out) {
   scale_ = estimate_pixel_scale(cloud, ws_.valid);
@@ -123,34 +145,37 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     return;
   }
 
-  LineModel candidates[2];
-  estimate_handrail_candidates(cloud, cfg_, wall_, rng_, ws_, candidates);
+  // Algorithm 2, repeated: a slot's best line that fails verification is
+  // removed and the search runs again on what is left, a bounded number
+  // of times.
+  IndexList& active = ws_.scratch;
+  active.clear();
+  for (std::int32_t i : ws_.side) active.push(i);
+  LineModel chosen_line[2];
   bool usable[2] = {false, false};
   CenterLine lines[2];
   bool ends[2][2] = {};
   float end_t[2][2] = {};
-  const float length_m = cfg_.handrail.bar_length_m;
-  for (int k = 0; k < 2; ++k) {
-    if (!candidates[k].valid) continue;
-    IndexList& inliers = ws_.line[k];
-    collect_line_inliers(cloud, cfg_, wall_, candidates[k], ws_, inliers);
-    const Cluster cluster = cluster_along_line(cloud, cfg_, candidates[k], inliers, ws_.line_t_m.get());
-    if (cluster.count < cfg_.min_line_inliers) continue;
-    if (!estimate_center_line(cloud, cfg_, wall_, inliers, &lines[k])) continue;
-    detect_ends(cloud, cfg_, scale_, ws_, inliers, lines[k], ends[k], end_t[k]);
-    // The beam-length check of Algorithm 1 applies in full only when both
-    // ends are seen; a bar that runs out of view need only be long enough
-    // not to be clutter, and never longer than a handrail.
-    const float extent = end_t[k][1] - end_t[k][0];
-    if (ends[k][0] && ends[k][1]) {
-      usable[k] = extent >= cfg_.beam_length_min_ratio * length_m &&
-                  extent <= cfg_.beam_length_max_ratio * length_m;
-    } else {
-      usable[k] = extent >= cfg_.min_visible_length_m &&
-                  extent <= cfg_.beam_length_max_ratio * length_m;
+  for (std::uint32_t attempt = 0; attempt < cfg_.line_attempts; ++attempt) {
+    LineModel candidates[2];
+    estimate_handrail_candidates(cloud, cfg_, wall_, rng_, active, candidates);
+    bool removed = false;
+    for (int k = 0; k < 2; ++k) {
+      if (usable[k] || !candidates[k].valid) continue;
+      if (verify_candidate(cloud, candidates[k], active, ws_.line[k], &lines[k], ends[k], end_t[k])) {
+        usable[k] = true;
+        chosen_line[k] = candidates[k];
+      } else {
+        remove_line_points(cloud, cfg_, wall_, candidates[k], active);
+        removed = true;
+      }
+    }
+    if ((usable[0] && usable[1]) || !removed || active.size() < cfg_.min_line_inliers ||
+        over_budget(start_us)) {
+      break;
     }
   }
-  const int chosen = select_by_gripper_angle(cfg_, candidates, usable);
+  const int chosen = select_by_gripper_angle(cfg_, chosen_line, usable);
   if (chosen < 0) {
     out->status = DetectStatus::kNoLine;
     return;

@@ -1,5 +1,7 @@
 #include "estimator/line_estimation.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -28,11 +30,10 @@ float line_angle_psi(const Eigen::Vector3f& direction) {
 }
 
 void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                  const Plane& wall, Random& rng, const Workspace& ws,
+                                  const Plane& wall, Random& rng, const IndexList& pts,
                                   LineModel candidates[2]) {
   candidates[0] = LineModel{};
   candidates[1] = LineModel{};
-  const IndexList& pts = ws.side;
   const std::size_t n = pts.size();
   if (n < 2) return;
   const std::size_t step = n > cfg.line_score_samples ? n / cfg.line_score_samples : 1;
@@ -65,16 +66,28 @@ void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorCon
 }
 
 void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                          const Plane& wall, const LineModel& line, const Workspace& ws,
+                          const Plane& wall, const LineModel& line, const IndexList& points,
                           IndexList& out) {
   out.clear();
   if (!line.valid) return;
-  for (std::int32_t i : ws.side) {
+  for (std::int32_t i : points) {
     if (distance_to_line(on_wall(cloud, wall, i), line.point, line.direction) <
         cfg.line_inlier_m) {
       out.push(i);
     }
   }
+}
+
+void remove_line_points(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                        const LineModel& line, IndexList& points) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const std::int32_t i = points[k];
+    if (distance_to_line(on_wall(cloud, wall, i), line.point, line.direction) >= cfg.line_inlier_m) {
+      points[kept++] = i;
+    }
+  }
+  points.resize_down(kept);
 }
 
 Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cfg,
@@ -105,6 +118,33 @@ Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cf
   best.t_min_m = t_m[inliers[0]];
   best.t_max_m = t_m[inliers[best_count - 1]];
   return best;
+}
+
+bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const IndexList& inliers, float* front_m) {
+  // Histogram of the inliers' distance from the wall, 2 mm bins, lightly
+  // smoothed. The bar's front face (flat on the ISS bar, the crown of a
+  // round one) is the densest height; a side face seen at an angle spreads
+  // thinly over the bar's depth and does not move the peak.
+  constexpr int kBins = 64;
+  constexpr float kBin_m = 0.002f;
+  const float expected = cfg.handrail.bar_center_offset_m + 0.5f * cfg.handrail.bar_depth_m;
+  const float base = expected - 0.5f * kBins * kBin_m;
+  float hist[kBins] = {};
+  for (std::int32_t i : inliers) {
+    const int b = static_cast<int>((ws.signed_distance_m[i] - base) / kBin_m);
+    if (b >= 0 && b < kBins) hist[b] += 1.0f;
+  }
+  float best = -1.0f;
+  int peak = 0;
+  for (int b = 2; b < kBins - 2; ++b) {
+    const float v = hist[b - 2] + 2.0f * hist[b - 1] + 3.0f * hist[b] + 2.0f * hist[b + 1] + hist[b + 2];
+    if (v > best) {
+      best = v;
+      peak = b;
+    }
+  }
+  *front_m = base + (static_cast<float>(peak) + 0.5f) * kBin_m;
+  return best > 0.0f && std::fabs(*front_m - expected) < cfg.front_height_tolerance_m;
 }
 
 int select_by_gripper_angle(const DetectorConfig& cfg, const LineModel candidates[2],

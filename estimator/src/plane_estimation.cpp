@@ -1,6 +1,7 @@
 #include "estimator/plane_estimation.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <cmath>
 
 namespace estimator {

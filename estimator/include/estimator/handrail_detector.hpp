@@ -5,6 +5,8 @@
 #include <cstdint>
 
 #include "estimator/config.hpp"
+#include "estimator/handrail_pose.hpp"
+#include "estimator/line_estimation.hpp"
 #include "estimator/organized_cloud.hpp"
 #include "estimator/pixel_scale.hpp"
 #include "estimator/random.hpp"
@@ -48,6 +50,10 @@ class HandrailDetector {
   bool over_budget(std::int64_t start_us) const;
   void select_valid_points(const OrganizedCloud& cloud);
   void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
+  // Cluster, front height, centre line, ends and length of one line.
+  bool verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
+                        const IndexList& points, IndexList& inliers, CenterLine* line,
+                        bool ends[2], float end_t[2]);
   void run_basic(const OrganizedCloud& cloud, HandrailDetection* out);
   void fill_pose(const Eigen::Vector3f& p_cam_center, const Eigen::Matrix3f& R_cam_handrail,
                  HandrailDetection* out) const;

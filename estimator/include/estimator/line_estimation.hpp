@@ -24,16 +24,22 @@ struct LineModel {
 float line_angle_psi(const Eigen::Vector3f& direction);
 
 // Algorithm 2: the two most supported lines, the weaker one kept near
-// perpendicular to the stronger. Points are taken from ws.side, projected
-// onto the wall so that depth noise does not blur the lines.
+// perpendicular to the stronger. Points are projected onto the wall so that
+// depth noise does not blur the lines.
 void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                  const Plane& wall, Random& rng, const Workspace& ws,
+                                  const Plane& wall, Random& rng, const IndexList& points,
                                   LineModel candidates[2]);
 
-// The points of ws.side within the inlier distance of the line, into out.
+// The points within the inlier distance of the line, into out.
 void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                          const Plane& wall, const LineModel& line, const Workspace& ws,
+                          const Plane& wall, const LineModel& line, const IndexList& points,
                           IndexList& out);
+
+// Drops the points within the inlier distance of the line, so that the next
+// search finds the next line (used when a line fails verification: a cable
+// with more support than the handrail must not hide it).
+void remove_line_points(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                        const LineModel& line, IndexList& points);
 
 struct Cluster {
   std::uint32_t count = 0;
@@ -51,5 +57,11 @@ Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cf
 // Returns -1 when neither is usable.
 int select_by_gripper_angle(const DetectorConfig& cfg, const LineModel candidates[2],
                             const bool usable[2]);
+
+// The bar's front face must stand where the handrail's geometry puts it
+// (offset + depth / 2 from the wall, within the tolerance). Its height is
+// the mode of the inliers' distances from the wall. Rejects cables that
+// pass the width test at the wrong height. *front_m receives the estimate.
+bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const IndexList& inliers, float* front_m);
 
 }  // namespace estimator

@@ -64,6 +64,7 @@ struct Workspace {
   IndexList side;
   IndexList line[2];
   IndexList scratch;
+  std::unique_ptr<float[]> values;  // per-point scratch for medians
 
   std::size_t bytes() const;
 };

@@ -1,0 +1,97 @@
+#pragma once
+// What the simulated camera sees, in metres, in a world frame of the
+// scenario's choosing. Surfaces are analytic so a ray finds its exact hit.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sim_hal {
+
+enum class HandrailKind : std::uint8_t { kPaperRound, kIss };
+const char* to_string(HandrailKind kind);
+
+// A bounded plane: centre, unit normal, in-plane unit axes u and v, half
+// sizes along them.
+struct RectSurface {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d u = Eigen::Vector3d::UnitX(), v = Eigen::Vector3d::UnitY();
+  double half_u = 0.0, half_v = 0.0;
+};
+
+// A finite cylinder with flat caps.
+struct CylinderSurface {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();  // axis unit
+  double radius = 0.0, half_length = 0.0;
+};
+
+// An oriented box: centre, rotation (columns = box axes), half sizes.
+struct BoxSurface {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+};
+
+// A bar whose cross-section is a rounded rectangle (the ISS handrail),
+// extruded along `axis`; `depth_dir` is the cross-section's long side.
+struct RoundedBarSurface {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d depth_dir = Eigen::Vector3d::UnitX();
+  double half_depth = 0.0, half_width = 0.0, corner_radius = 0.0, half_length = 0.0;
+};
+
+enum class SurfaceKind : std::uint8_t { kRect, kCylinder, kBox, kRoundedBar };
+
+struct Surface {
+  SurfaceKind kind = SurfaceKind::kRect;
+  std::int32_t object_id = -1;  // handrail index for handrail parts, -1 otherwise
+  double reflectivity = 0.5;    // 0..1
+  RectSurface rect{};
+  CylinderSurface cylinder{};
+  BoxSurface box{};
+  RoundedBarSurface bar{};
+  // Bounding sphere for a quick reject.
+  Eigen::Vector3d bound_center = Eigen::Vector3d::Zero();
+  double bound_radius = 0.0;
+};
+
+// A handrail as placed on a wall: its footprint centre on the wall, the
+// wall's unit normal, and the bar's direction.
+struct Handrail {
+  HandrailKind kind = HandrailKind::kIss;
+  Eigen::Vector3d foot_center = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double bar_length_m = 0.55;
+  double reflectivity = 0.5;
+  // Centre-line geometry per kind (the estimator's geometry config agrees).
+  double center_offset_m() const;
+  Eigen::Vector3d end_point(int end) const;  // centre line, end 0 at -axis
+};
+
+struct Scene {
+  std::vector<Surface> surfaces;
+  std::vector<Handrail> handrails;
+
+  void add_wall(const Eigen::Vector3d& center, const Eigen::Vector3d& normal,
+                const Eigen::Vector3d& up, double width_m, double height_m,
+                double reflectivity = 0.6);
+  // Adds the bar and its two legs as surfaces.
+  void add_handrail(const Handrail& handrail);
+  // A cable or pipe through a polyline: one cylinder per segment.
+  void add_cable(const std::vector<Eigen::Vector3d>& points, double diameter_m,
+                 double reflectivity = 0.3);
+  void add_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
+               const Eigen::Vector3d& size_m, double reflectivity = 0.5);
+};
+
+struct Hit {
+  double t = 0.0;                                    // along the ray
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, facing the ray
+  std::int32_t surface = -1;
+};
+
+// Nearest hit along origin + t * dir (dir unit) with t in (t_min, t_max).
+bool intersect_scene(const Scene& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                     double t_min, double t_max, Hit* hit);
+
+}  // namespace sim_hal

@@ -1,0 +1,89 @@
+#pragma once
+// The time-of-flight sensor model: turns exact ray hits into what a Pico
+// Flexx reports. Every effect has a switch and its parameters; the model is
+// deterministic for a given seed and frame index. See sim_hal/README.md.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "hal/depth_frame.hpp"
+#include "sim_hal/camera_model.hpp"
+#include "sim_hal/scene.hpp"
+
+namespace sim_hal {
+
+struct ToFSettings {
+  double range_min_m = 0.1;
+  double range_max_m = 4.0;
+
+  // Amplitude = exposure * reflectivity * cos(incidence) / range^2, with the
+  // exposure set per frame (auto exposure) so that the 95th percentile sits
+  // at amplitude_target, but never above max_exposure.
+  double amplitude_target = 2000.0;
+  double max_exposure = 2000.0;
+
+  // Axial (along the ray) noise: sigma = noise_ref_m * sqrt(amplitude_ref /
+  // amplitude), at least noise_min_m. Lower amplitude (farther, darker,
+  // more oblique) means more noise.
+  bool noise = true;
+  double noise_ref_m = 0.003;
+  double amplitude_ref = 2000.0;
+  double noise_min_m = 0.0008;
+
+  // Flying pixels: a pixel on a depth discontinuity (a jump to a neighbour
+  // above the vendor's threshold) mixes the two depths with this probability.
+  bool flying_pixels = true;
+  double flying_probability = 0.7;
+  // The vendor's filter that invalidates pixels jumping to both neighbours.
+  bool flying_filter = true;
+
+  // Invalid pixels: low amplitude, saturation, grazing incidence, out of
+  // range, noise above the vendor's cut-off.
+  bool invalid_pixels = true;
+  double amplitude_min = 40.0;
+  double amplitude_saturation = 3750.0;
+  double grazing_cos_min = 0.12;  // about 83 deg from the surface normal
+  double noise_cutoff_m = 0.07;
+
+  // Multipath: light bounced off a nearby raised surface lengthens the path
+  // in concave corners (a leg meeting the wall). Bias = gain * the fraction
+  // of the window's pixels 1..15 cm nearer than this one.
+  bool multipath = true;
+  double multipath_gain_m = 0.008;
+  int multipath_window_px = 3;
+};
+
+// The vendor's flying-pixel threshold: 0.018 m up to 1 m, rising linearly to
+// 0.14 m at 4.5 m.
+double flying_pixel_threshold_m(double range_m);
+
+class DepthRenderer {
+ public:
+  DepthRenderer(const CameraIntrinsics& cam, const ToFSettings& settings);
+
+  // Renders one frame. `out` is resized to width * height once and reused.
+  void render(const Scene& scene, const Eigen::Isometry3d& T_world_cam, std::uint64_t seed,
+              std::uint64_t frame_index, std::vector<hal::DepthPoint>* out);
+
+  const CameraIntrinsics& camera() const { return cam_; }
+  const ToFSettings& settings() const { return settings_; }
+  // The last frame's exact ranges (0 = no hit) and hit surfaces (-1 = none).
+  const std::vector<float>& true_range_m() const { return range_; }
+  const std::vector<std::int32_t>& hit_surface() const { return surface_; }
+
+ private:
+  void cast_rays(const Scene& scene, const Eigen::Isometry3d& T_world_cam);
+  void add_flying_pixels(std::uint64_t stream_seed);
+  void add_multipath();
+  void apply_flying_filter(std::vector<hal::DepthPoint>* out);
+
+  CameraIntrinsics cam_;
+  ToFSettings settings_;
+  std::vector<Eigen::Vector3f> rays_;
+  std::vector<float> range_, measured_, amplitude_, cos_incidence_, bias_;
+  std::vector<std::int32_t> surface_;
+  std::vector<float> sorted_;
+  std::vector<std::uint8_t> drop_;
+};
+
+}  // namespace sim_hal

@@ -1,0 +1,314 @@
+#include "sim_hal/scenario.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "hal/json.hpp"
+
+namespace sim_hal {
+namespace {
+
+using hal::JsonValue;
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr std::size_t kMaxFrames = 100000;
+
+// Collects the first error with its line; later checks become no-ops.
+class Reader {
+ public:
+  explicit Reader(std::string path) : path_(std::move(path)) {}
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
+
+  bool fail(const JsonValue& at, const std::string& what) {
+    if (ok()) error_ = path_ + ":" + std::to_string(at.line) + ": " + what;
+    return false;
+  }
+
+  const JsonValue* member(const JsonValue& obj, const char* key, JsonValue::Type type, bool required) {
+    const JsonValue* v = obj.find(key);
+    if (!v) {
+      if (required) fail(obj, std::string("missing \"") + key + "\"");
+      return nullptr;
+    }
+    if (v->type != type) {
+      fail(*v, std::string("\"") + key + "\" must be a " + hal::to_string(type) + ", not a " +
+                   hal::to_string(v->type));
+      return nullptr;
+    }
+    return v;
+  }
+
+  bool number(const JsonValue& obj, const char* key, double lo, double hi, double* out, bool required) {
+    const JsonValue* v = member(obj, key, JsonValue::Type::kNumber, required);
+    if (!v) return !required && ok();
+    if (!(v->number >= lo && v->number <= hi)) {
+      std::ostringstream m;
+      m << "\"" << key << "\" = " << v->number << " is outside " << lo << " .. " << hi;
+      return fail(*v, m.str());
+    }
+    *out = v->number;
+    return true;
+  }
+
+  bool vec3(const JsonValue& obj, const char* key, Eigen::Vector3d* out, bool required, bool unit = false) {
+    const JsonValue* v = member(obj, key, JsonValue::Type::kArray, required);
+    if (!v) return !required && ok();
+    if (v->items.size() != 3) return fail(*v, std::string("\"") + key + "\" must have 3 numbers");
+    for (int k = 0; k < 3; ++k) {
+      if (!v->items[k].is_number()) return fail(v->items[k], std::string("\"") + key + "\" must hold numbers");
+      (*out)[k] = v->items[k].number;
+    }
+    if (unit) {
+      if (out->norm() < 1e-9) return fail(*v, std::string("\"") + key + "\" must not be zero");
+      out->normalize();
+    }
+    return true;
+  }
+
+  bool flag(const JsonValue& obj, const char* key, bool* out) {
+    const JsonValue* v = member(obj, key, JsonValue::Type::kBool, false);
+    if (v) *out = v->boolean;
+    return ok();
+  }
+
+  void unknown_keys(const JsonValue& obj, std::initializer_list<const char*> known, const char* where) {
+    for (const auto& m : obj.members) {
+      bool found = false;
+      for (const char* k : known) found = found || m.first == k;
+      if (!found) fail(m.second, "unknown key \"" + m.first + "\" in " + where);
+    }
+  }
+
+ private:
+  std::string path_;
+  std::string error_;
+};
+
+Eigen::Matrix3d rotation_rpy_deg(const Eigen::Vector3d& rpy) {
+  return (Eigen::AngleAxisd(rpy.z() * kDegToRad, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(rpy.y() * kDegToRad, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(rpy.x() * kDegToRad, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+void read_sensor(Reader& r, const JsonValue& s, ToFSettings* t) {
+  r.unknown_keys(s, {"noise", "flying_pixels", "flying_filter", "invalid_pixels", "multipath",
+                     "noise_ref_m", "flying_probability", "multipath_gain_m", "amplitude_min",
+                     "range_min_m", "range_max_m"},
+                 "sensor");
+  r.flag(s, "noise", &t->noise);
+  r.flag(s, "flying_pixels", &t->flying_pixels);
+  r.flag(s, "flying_filter", &t->flying_filter);
+  r.flag(s, "invalid_pixels", &t->invalid_pixels);
+  r.flag(s, "multipath", &t->multipath);
+  r.number(s, "noise_ref_m", 0.0, 0.1, &t->noise_ref_m, false);
+  r.number(s, "flying_probability", 0.0, 1.0, &t->flying_probability, false);
+  r.number(s, "multipath_gain_m", 0.0, 0.1, &t->multipath_gain_m, false);
+  r.number(s, "amplitude_min", 0.0, 4095.0, &t->amplitude_min, false);
+  r.number(s, "range_min_m", 0.0, 10.0, &t->range_min_m, false);
+  r.number(s, "range_max_m", 0.1, 20.0, &t->range_max_m, false);
+}
+
+void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
+  r.unknown_keys(sc, {"walls", "handrails", "cables", "boxes", "pipes"}, "scene");
+  if (const JsonValue* walls = r.member(sc, "walls", JsonValue::Type::kArray, true)) {
+    if (walls->items.empty()) r.fail(*walls, "\"walls\" must hold at least one wall");
+    for (const JsonValue& w : walls->items) {
+      if (!w.is_object()) { r.fail(w, "a wall must be an object"); return; }
+      r.unknown_keys(w, {"center", "normal", "up", "size", "reflectivity"}, "a wall");
+      Eigen::Vector3d c, n, up(0, 0, 1);
+      double refl = 0.6;
+      r.vec3(w, "center", &c, true);
+      r.vec3(w, "normal", &n, true, true);
+      r.vec3(w, "up", &up, false, true);
+      r.number(w, "reflectivity", 0.01, 1.0, &refl, false);
+      const JsonValue* size = r.member(w, "size", JsonValue::Type::kArray, true);
+      if (!r.ok()) return;
+      if (size->items.size() != 2 || !size->items[0].is_number() || !size->items[1].is_number() ||
+          size->items[0].number <= 0 || size->items[1].number <= 0) {
+        r.fail(*size, "\"size\" must be [width_m, height_m], both positive");
+        return;
+      }
+      if (std::fabs(up.dot(n)) > 0.99) { r.fail(w, "\"up\" must not be parallel to \"normal\""); return; }
+      scene->add_wall(c, n, up, size->items[0].number, size->items[1].number, refl);
+    }
+  }
+  if (const JsonValue* rails = r.member(sc, "handrails", JsonValue::Type::kArray, false)) {
+    for (const JsonValue& h : rails->items) {
+      if (!h.is_object()) { r.fail(h, "a handrail must be an object"); return; }
+      r.unknown_keys(h, {"kind", "foot", "normal", "axis", "length", "reflectivity"}, "a handrail");
+      Handrail rail{};
+      const JsonValue* kind = r.member(h, "kind", JsonValue::Type::kString, true);
+      if (!r.ok()) return;
+      if (kind->text == "round") {
+        rail.kind = HandrailKind::kPaperRound;
+      } else if (kind->text == "iss") {
+        rail.kind = HandrailKind::kIss;
+      } else {
+        r.fail(*kind, "\"kind\" must be \"round\" or \"iss\", not \"" + kind->text + "\"");
+        return;
+      }
+      rail.reflectivity = 0.5;
+      r.vec3(h, "foot", &rail.foot_center, true);
+      r.vec3(h, "normal", &rail.normal, true, true);
+      r.vec3(h, "axis", &rail.axis, true, true);
+      r.number(h, "length", 0.1, 2.0, &rail.bar_length_m, true);
+      r.number(h, "reflectivity", 0.01, 1.0, &rail.reflectivity, false);
+      if (!r.ok()) return;
+      if (std::fabs(rail.axis.dot(rail.normal)) > 1e-3) { r.fail(h, "\"axis\" must be perpendicular to \"normal\""); return; }
+      scene->add_handrail(rail);
+    }
+  }
+  for (const char* key : {"cables", "pipes"}) {
+    const JsonValue* list = r.member(sc, key, JsonValue::Type::kArray, false);
+    if (!list) continue;
+    for (const JsonValue& c : list->items) {
+      if (!c.is_object()) { r.fail(c, "a cable must be an object"); return; }
+      r.unknown_keys(c, {"points", "diameter", "reflectivity"}, key);
+      double diameter = 0.0, refl = 0.3;
+      r.number(c, "diameter", 0.002, 0.2, &diameter, true);
+      r.number(c, "reflectivity", 0.01, 1.0, &refl, false);
+      const JsonValue* pts = r.member(c, "points", JsonValue::Type::kArray, true);
+      if (!r.ok()) return;
+      if (pts->items.size() < 2) { r.fail(*pts, "\"points\" needs at least 2 points"); return; }
+      std::vector<Eigen::Vector3d> points;
+      for (const JsonValue& p : pts->items) {
+        if (!p.is_array() || p.items.size() != 3 || !p.items[0].is_number() || !p.items[1].is_number() ||
+            !p.items[2].is_number()) {
+          r.fail(p, "each point must be [x, y, z]");
+          return;
+        }
+        points.emplace_back(p.items[0].number, p.items[1].number, p.items[2].number);
+      }
+      scene->add_cable(points, diameter, refl);
+    }
+  }
+  if (const JsonValue* boxes = r.member(sc, "boxes", JsonValue::Type::kArray, false)) {
+    for (const JsonValue& b : boxes->items) {
+      if (!b.is_object()) { r.fail(b, "a box must be an object"); return; }
+      r.unknown_keys(b, {"center", "size", "rpy_deg", "reflectivity"}, "a box");
+      Eigen::Vector3d c, size, rpy = Eigen::Vector3d::Zero();
+      double refl = 0.5;
+      r.vec3(b, "center", &c, true);
+      r.vec3(b, "size", &size, true);
+      r.vec3(b, "rpy_deg", &rpy, false);
+      r.number(b, "reflectivity", 0.01, 1.0, &refl, false);
+      if (!r.ok()) return;
+      if (size.minCoeff() <= 0.0) { r.fail(b, "box \"size\" must be positive"); return; }
+      scene->add_box(c, rotation_rpy_deg(rpy), size, refl);
+    }
+  }
+}
+
+bool read_pose(Reader& r, const JsonValue& p, Eigen::Vector3d* pos, Eigen::Vector3d* facing,
+               Eigen::Vector3d* up, Eigen::Vector3d* rpy) {
+  *facing = Eigen::Vector3d(-1, 0, 0);
+  *up = Eigen::Vector3d(0, 0, 1);
+  *rpy = Eigen::Vector3d::Zero();
+  r.vec3(p, "position", pos, true);
+  r.vec3(p, "facing", facing, false, true);
+  r.vec3(p, "up", up, false, true);
+  r.vec3(p, "rpy_deg", rpy, false);
+  if (r.ok() && std::fabs(facing->dot(*up)) > 0.99) return r.fail(p, "\"up\" must not be parallel to \"facing\"");
+  return r.ok();
+}
+
+void read_poses(Reader& r, const JsonValue& root, Scenario* s) {
+  const JsonValue* poses = r.member(root, "poses", JsonValue::Type::kArray, true);
+  if (!poses) return;
+  if (poses->items.empty()) { r.fail(*poses, "\"poses\" must hold at least one pose"); return; }
+  for (const JsonValue& p : poses->items) {
+    if (!p.is_object()) { r.fail(p, "a pose must be an object"); return; }
+    r.unknown_keys(p, {"label", "position", "facing", "up", "rpy_deg", "frames", "to"}, "a pose");
+    double frames = 1;
+    r.number(p, "frames", 1, kMaxFrames, &frames, false);
+    Eigen::Vector3d pos, facing, up, rpy;
+    if (!read_pose(r, p, &pos, &facing, &up, &rpy)) return;
+    std::string label;
+    if (const JsonValue* l = r.member(p, "label", JsonValue::Type::kString, false)) label = l->text;
+    // With "to", the camera moves linearly from this pose to that one over
+    // the frames; without it, it holds still.
+    Eigen::Vector3d pos1 = pos, rpy1 = rpy, facing1, up1;
+    if (const JsonValue* to = r.member(p, "to", JsonValue::Type::kObject, false)) {
+      r.unknown_keys(*to, {"position", "rpy_deg", "facing", "up"}, "\"to\"");
+      if (!read_pose(r, *to, &pos1, &facing1, &up1, &rpy1)) return;
+    }
+    if (!r.ok()) return;
+    const int n = static_cast<int>(frames);
+    if (s->T_world_cam.size() + static_cast<std::size_t>(n) > kMaxFrames) {
+      r.fail(p, "too many frames in the scenario (limit 100000)");
+      return;
+    }
+    for (int k = 0; k < n; ++k) {
+      const double f = n > 1 ? static_cast<double>(k) / (n - 1) : 0.0;
+      s->T_world_cam.push_back(camera_pose(pos + f * (pos1 - pos), facing, up, rpy + f * (rpy1 - rpy)));
+      s->pose_labels.push_back(label);
+    }
+  }
+}
+
+}  // namespace
+
+Eigen::Isometry3d camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& facing,
+                              const Eigen::Vector3d& up, const Eigen::Vector3d& rpy_deg) {
+  const Eigen::Vector3d x = facing.normalized();
+  const Eigen::Vector3d z = (up - up.dot(x) * x).normalized();
+  Eigen::Matrix3d R_world_base;
+  R_world_base.col(0) = x;
+  R_world_base.col(1) = z.cross(x);
+  R_world_base.col(2) = z;
+  const Eigen::Matrix3d R_world_body = R_world_base * rotation_rpy_deg(rpy_deg);
+  Eigen::Matrix3d R_body_cam;
+  R_body_cam.col(0) = Eigen::Vector3d(0, -1, 0);  // camera x = body right
+  R_body_cam.col(1) = Eigen::Vector3d(0, 0, -1);  // camera y = body down
+  R_body_cam.col(2) = Eigen::Vector3d(1, 0, 0);   // camera z = body forward
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = R_world_body * R_body_cam;
+  T.translation() = position;
+  return T;
+}
+
+bool parse_scenario(const std::string& text, const std::string& path, Scenario* out, std::string* error) {
+  *out = Scenario{};
+  JsonValue root;
+  std::string json_error;
+  if (!hal::parse_json(text, &root, &json_error)) {
+    *error = path + ":" + json_error.substr(5);  // "line N: ..." -> "N: ..."
+    return false;
+  }
+  Reader r(path);
+  if (!root.is_object()) {
+    *error = path + ":" + std::to_string(root.line) + ": a scenario must be a JSON object";
+    return false;
+  }
+  r.unknown_keys(root, {"name", "description", "seed", "frame_rate_hz", "sensor", "scene", "poses"}, "the scenario");
+  if (const JsonValue* name = r.member(root, "name", JsonValue::Type::kString, true)) out->name = name->text;
+  if (const JsonValue* d = r.member(root, "description", JsonValue::Type::kString, false)) out->description = d->text;
+  double seed = 1;
+  r.number(root, "seed", 0, 9007199254740991.0, &seed, false);
+  out->seed = static_cast<std::uint64_t>(seed);
+  r.number(root, "frame_rate_hz", 0.1, 1000.0, &out->frame_rate_hz, false);
+  if (const JsonValue* s = r.member(root, "sensor", JsonValue::Type::kObject, false)) read_sensor(r, *s, &out->sensor);
+  if (const JsonValue* sc = r.member(root, "scene", JsonValue::Type::kObject, true)) read_scene(r, *sc, &out->scene);
+  if (r.ok()) read_poses(r, root, out);
+  if (!r.ok()) {
+    *error = r.error();
+    return false;
+  }
+  return true;
+}
+
+bool load_scenario(const std::string& path, Scenario* out, std::string* error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *error = path + ": cannot open the scenario file";
+    return false;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scenario(text.str(), path, out, error);
+}
+
+}  // namespace sim_hal

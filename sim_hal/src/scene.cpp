@@ -1,0 +1,287 @@
+#include "sim_hal/scene.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace sim_hal {
+namespace {
+
+constexpr double kParallelEps = 1e-12;
+
+// The paper's model: legs 6.5 cm high under the ends of a 3.5 cm round bar.
+constexpr double kRoundRadius = 0.0175, kRoundLegHeight = 0.065;
+// The ISS bar (from the meshes in shared/assets/handrails).
+constexpr double kIssDepth = 0.035, kIssWidth = 0.019, kIssCorner = 0.008, kIssOffset = 0.061;
+constexpr double kIssLegAlong = 0.045, kIssLegAcross = 0.025;
+
+void keep_nearest(double t, const Eigen::Vector3d& n, double t_min, double* best_t,
+                  Eigen::Vector3d* best_n) {
+  if (t > t_min && t < *best_t) {
+    *best_t = t;
+    *best_n = n;
+  }
+}
+
+bool hit_rect(const RectSurface& r, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+              double t_min, double* t, Eigen::Vector3d* n) {
+  const double denom = d.dot(r.normal);
+  if (std::fabs(denom) < kParallelEps) return false;
+  const double s = (r.center - o).dot(r.normal) / denom;
+  if (s <= t_min || s >= *t) return false;
+  const Eigen::Vector3d q = o + s * d - r.center;
+  if (std::fabs(q.dot(r.u)) > r.half_u || std::fabs(q.dot(r.v)) > r.half_v) return false;
+  *t = s;
+  *n = r.normal;
+  return true;
+}
+
+bool hit_cylinder(const CylinderSurface& c, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                  double t_min, double* t, Eigen::Vector3d* n) {
+  const Eigen::Vector3d oc = o - c.center;
+  const double oa = oc.dot(c.axis), da = d.dot(c.axis);
+  const Eigen::Vector3d op = oc - oa * c.axis, dp = d - da * c.axis;
+  const double a = dp.squaredNorm(), b = 2.0 * op.dot(dp), k = op.squaredNorm() - c.radius * c.radius;
+  const double before = *t;
+  if (a > kParallelEps) {
+    const double disc = b * b - 4.0 * a * k;
+    if (disc >= 0.0) {
+      const double sq = std::sqrt(disc);
+      for (double s : {(-b - sq) / (2.0 * a), (-b + sq) / (2.0 * a)}) {
+        if (std::fabs(oa + s * da) <= c.half_length) {
+          keep_nearest(s, (op + s * dp).normalized(), t_min, t, n);
+        }
+      }
+    }
+  }
+  if (std::fabs(da) > kParallelEps) {
+    for (double sign : {-1.0, 1.0}) {
+      const double s = (sign * c.half_length - oa) / da;
+      if ((op + s * dp).squaredNorm() <= c.radius * c.radius) {
+        keep_nearest(s, sign * c.axis, t_min, t, n);
+      }
+    }
+  }
+  return *t < before;
+}
+
+bool hit_box(const BoxSurface& b, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min,
+             double* t, Eigen::Vector3d* n) {
+  const Eigen::Vector3d ol = b.R.transpose() * (o - b.center), dl = b.R.transpose() * d;
+  double t0 = -1e300, t1 = 1e300;
+  int axis0 = -1;
+  double sign0 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    if (std::fabs(dl[i]) < kParallelEps) {
+      if (std::fabs(ol[i]) > b.half[i]) return false;
+      continue;
+    }
+    double a = (-b.half[i] - ol[i]) / dl[i], c = (b.half[i] - ol[i]) / dl[i];
+    double sign = -1.0;
+    if (a > c) {
+      std::swap(a, c);
+      sign = 1.0;
+    }
+    if (a > t0) {
+      t0 = a;
+      axis0 = i;
+      sign0 = sign;
+    }
+    t1 = std::fmin(t1, c);
+  }
+  if (t0 > t1 || axis0 < 0) return false;
+  if (t0 <= t_min || t0 >= *t) return false;  // rays start outside boxes here
+  *t = t0;
+  *n = sign0 * b.R.col(axis0);
+  return true;
+}
+
+bool inside_rounded_rect(double x, double y, double hx, double hy, double rc) {
+  const double ax = std::fabs(x), ay = std::fabs(y);
+  if (ax > hx || ay > hy) return false;
+  if (ax <= hx - rc || ay <= hy - rc) return true;
+  const double dx = ax - (hx - rc), dy = ay - (hy - rc);
+  return dx * dx + dy * dy <= rc * rc;
+}
+
+bool hit_rounded_bar(const RoundedBarSurface& b, const Eigen::Vector3d& o,
+                     const Eigen::Vector3d& d, double t_min, double* t, Eigen::Vector3d* n) {
+  const Eigen::Vector3d e_w = b.axis.cross(b.depth_dir);
+  const Eigen::Vector3d oc = o - b.center;
+  const double ox = oc.dot(b.depth_dir), oy = oc.dot(e_w), oa = oc.dot(b.axis);
+  const double dx = d.dot(b.depth_dir), dy = d.dot(e_w), da = d.dot(b.axis);
+  const double hx = b.half_depth, hy = b.half_width, rc = b.corner_radius, hl = b.half_length;
+  const double before = *t;
+  auto axial_ok = [&](double s) { return std::fabs(oa + s * da) <= hl; };
+  // Flat sides.
+  for (double sx : {-1.0, 1.0}) {
+    if (std::fabs(dx) > kParallelEps) {
+      const double s = (sx * hx - ox) / dx;
+      if (std::fabs(oy + s * dy) <= hy - rc && axial_ok(s)) keep_nearest(s, sx * b.depth_dir, t_min, t, n);
+    }
+    if (std::fabs(dy) > kParallelEps) {
+      const double s = (sx * hy - oy) / dy;
+      if (std::fabs(ox + s * dx) <= hx - rc && axial_ok(s)) keep_nearest(s, sx * e_w, t_min, t, n);
+    }
+  }
+  // Rounded corners: circles in the cross-section.
+  const double a2 = dx * dx + dy * dy;
+  if (a2 > kParallelEps) {
+    for (double cx : {-(hx - rc), hx - rc}) {
+      for (double cy : {-(hy - rc), hy - rc}) {
+        const double px = ox - cx, py = oy - cy;
+        const double bq = 2.0 * (px * dx + py * dy), cq = px * px + py * py - rc * rc;
+        const double disc = bq * bq - 4.0 * a2 * cq;
+        if (disc < 0.0) continue;
+        const double sq = std::sqrt(disc);
+        for (double s : {(-bq - sq) / (2.0 * a2), (-bq + sq) / (2.0 * a2)}) {
+          const double x = ox + s * dx, y = oy + s * dy;
+          if ((x - cx) * cx < 0.0 || (y - cy) * cy < 0.0 || !axial_ok(s)) continue;
+          const Eigen::Vector3d nn = ((x - cx) * b.depth_dir + (y - cy) * e_w) / rc;
+          keep_nearest(s, nn, t_min, t, n);
+        }
+      }
+    }
+  }
+  // End caps.
+  if (std::fabs(da) > kParallelEps) {
+    for (double sa : {-1.0, 1.0}) {
+      const double s = (sa * hl - oa) / da;
+      if (inside_rounded_rect(ox + s * dx, oy + s * dy, hx, hy, rc)) keep_nearest(s, sa * b.axis, t_min, t, n);
+    }
+  }
+  return *t < before;
+}
+
+bool misses_bound(const Surface& s, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_max) {
+  const Eigen::Vector3d oc = s.bound_center - o;
+  const double along = oc.dot(d);
+  if (along < -s.bound_radius || along - s.bound_radius > t_max) return true;
+  return (oc - along * d).squaredNorm() > s.bound_radius * s.bound_radius;
+}
+
+Surface make_cylinder(const Eigen::Vector3d& center, const Eigen::Vector3d& axis, double radius,
+                      double half_length, std::int32_t id, double reflectivity) {
+  Surface s{};
+  s.kind = SurfaceKind::kCylinder;
+  s.object_id = id;
+  s.reflectivity = reflectivity;
+  s.cylinder = {center, axis.normalized(), radius, half_length};
+  s.bound_center = center;
+  s.bound_radius = std::hypot(radius, half_length);
+  return s;
+}
+
+Surface make_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R, const Eigen::Vector3d& half,
+                 std::int32_t id, double reflectivity) {
+  Surface s{};
+  s.kind = SurfaceKind::kBox;
+  s.object_id = id;
+  s.reflectivity = reflectivity;
+  s.box = {center, R, half};
+  s.bound_center = center;
+  s.bound_radius = half.norm();
+  return s;
+}
+
+}  // namespace
+
+const char* to_string(HandrailKind kind) {
+  return kind == HandrailKind::kPaperRound ? "round" : "iss";
+}
+
+double Handrail::center_offset_m() const {
+  return kind == HandrailKind::kPaperRound ? kRoundLegHeight + kRoundRadius : kIssOffset;
+}
+
+Eigen::Vector3d Handrail::end_point(int end) const {
+  const double sign = end == 0 ? -1.0 : 1.0;
+  return foot_center + center_offset_m() * normal + sign * 0.5 * bar_length_m * axis;
+}
+
+void Scene::add_wall(const Eigen::Vector3d& center, const Eigen::Vector3d& normal,
+                     const Eigen::Vector3d& up, double width_m, double height_m, double reflectivity) {
+  Surface s{};
+  s.kind = SurfaceKind::kRect;
+  s.object_id = -1;
+  s.reflectivity = reflectivity;
+  const Eigen::Vector3d n = normal.normalized();
+  const Eigen::Vector3d v = (up - up.dot(n) * n).normalized();
+  s.rect = {center, n, v.cross(n), v, 0.5 * width_m, 0.5 * height_m};
+  s.bound_center = center;
+  s.bound_radius = 0.5 * std::hypot(width_m, height_m);
+  surfaces.push_back(s);
+}
+
+void Scene::add_handrail(const Handrail& h) {
+  const std::int32_t id = static_cast<std::int32_t>(handrails.size());
+  handrails.push_back(h);
+  const Eigen::Vector3d n = h.normal.normalized(), a = h.axis.normalized();
+  const double half = 0.5 * h.bar_length_m;
+  const Eigen::Vector3d bar_center = h.foot_center + h.center_offset_m() * n;
+  if (h.kind == HandrailKind::kPaperRound) {
+    surfaces.push_back(make_cylinder(bar_center, a, kRoundRadius, half, id, h.reflectivity));
+    for (double sign : {-1.0, 1.0}) {
+      const Eigen::Vector3d leg = h.foot_center + sign * (half - kRoundRadius) * a + 0.5 * kRoundLegHeight * n;
+      surfaces.push_back(make_cylinder(leg, n, kRoundRadius, 0.5 * kRoundLegHeight, id, h.reflectivity));
+    }
+    return;
+  }
+  Surface bar{};
+  bar.kind = SurfaceKind::kRoundedBar;
+  bar.object_id = id;
+  bar.reflectivity = h.reflectivity;
+  bar.bar = {bar_center, a, n, 0.5 * kIssDepth, 0.5 * kIssWidth, kIssCorner, half};
+  bar.bound_center = bar_center;
+  bar.bound_radius = std::sqrt(half * half + 0.25 * (kIssDepth * kIssDepth + kIssWidth * kIssWidth));
+  surfaces.push_back(bar);
+  Eigen::Matrix3d R;
+  R.col(0) = n;
+  R.col(1) = a.cross(n);
+  R.col(2) = a;
+  for (double sign : {-1.0, 1.0}) {
+    const Eigen::Vector3d leg = h.foot_center + sign * (half - 0.5 * kIssLegAlong) * a + 0.5 * kIssOffset * n;
+    surfaces.push_back(make_box(leg, R, Eigen::Vector3d(0.5 * kIssOffset, 0.5 * kIssLegAcross, 0.5 * kIssLegAlong),
+                                id, h.reflectivity));
+  }
+}
+
+void Scene::add_cable(const std::vector<Eigen::Vector3d>& points, double diameter_m, double reflectivity) {
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    const Eigen::Vector3d seg = points[k] - points[k - 1];
+    const double len = seg.norm();
+    if (len < 1e-6) continue;
+    surfaces.push_back(make_cylinder(0.5 * (points[k] + points[k - 1]), seg / len, 0.5 * diameter_m,
+                                     0.5 * len + 0.25 * diameter_m, -1, reflectivity));
+  }
+}
+
+void Scene::add_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R, const Eigen::Vector3d& size_m,
+                    double reflectivity) {
+  surfaces.push_back(make_box(center, R, 0.5 * size_m, -1, reflectivity));
+}
+
+bool intersect_scene(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                     double t_min, double t_max, Hit* hit) {
+  double t = t_max;
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  std::int32_t which = -1;
+  for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
+    const Surface& s = scene.surfaces[k];
+    if (misses_bound(s, o, d, t)) continue;
+    bool got = false;
+    switch (s.kind) {
+      case SurfaceKind::kRect: got = hit_rect(s.rect, o, d, t_min, &t, &n); break;
+      case SurfaceKind::kCylinder: got = hit_cylinder(s.cylinder, o, d, t_min, &t, &n); break;
+      case SurfaceKind::kBox: got = hit_box(s.box, o, d, t_min, &t, &n); break;
+      case SurfaceKind::kRoundedBar: got = hit_rounded_bar(s.bar, o, d, t_min, &t, &n); break;
+    }
+    if (got) which = static_cast<std::int32_t>(k);
+  }
+  if (which < 0) return false;
+  hit->t = t;
+  hit->normal = n.dot(d) > 0.0 ? Eigen::Vector3d(-n) : n;
+  hit->surface = which;
+  return true;
+}
+
+}  // namespace sim_hal

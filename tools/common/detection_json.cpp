@@ -1,0 +1,63 @@
+#include "detection_json.hpp"
+
+#include <cstdio>
+
+namespace tools {
+namespace {
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string vec(const Eigen::Vector3f& v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "[%.5f,%.5f,%.5f]", v.x(), v.y(), v.z());
+  return buf;
+}
+
+}  // namespace
+
+std::string detection_to_json(const std::string& frame, const estimator::HandrailDetection& d) {
+  char time_ms[32];
+  std::snprintf(time_ms, sizeof time_ms, "%.3f", d.processing_time_us / 1000.0);
+  std::string s = "{\"frame\":\"" + escape(frame) + "\",\"state\":\"" + to_string(d.state) + "\"";
+  if (d.status == estimator::DetectStatus::kFound) {
+    s += ",\"position\":" + vec(d.p_cam_center);
+    s += ",\"axis\":" + vec(d.axis());
+    s += ",\"normal\":" + vec(d.normal());
+    s += ",\"ends\":[";
+    bool first = true;
+    for (int e = 0; e < 2; ++e) {
+      if (!d.end_seen[e]) continue;
+      if (!first) s += ",";
+      s += vec(d.ends_cam[e]);
+      first = false;
+    }
+    s += "],\"target_position\":" + vec(d.p_cam_target);
+    s += ",\"target_rotation\":[";
+    for (int r = 0; r < 3; ++r) {
+      if (r) s += ",";
+      s += vec(d.R_cam_target.row(r).transpose());
+    }
+    s += "],\"inliers\":" + std::to_string(d.inliers);
+  } else {
+    s += ",\"reason\":\"" + std::string(to_string(d.status)) + "\"";
+  }
+  s += ",\"time_ms\":" + std::string(time_ms) + "}";
+  return s;
+}
+
+}  // namespace tools

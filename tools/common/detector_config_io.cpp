@@ -1,0 +1,175 @@
+#include "detector_config_io.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "hal/json.hpp"
+
+namespace tools {
+namespace {
+
+using hal::JsonValue;
+
+struct FloatKey {
+  const char* name;
+  float estimator::DetectorConfig::*field;
+};
+struct UintKey {
+  const char* name;
+  std::uint32_t estimator::DetectorConfig::*field;
+};
+
+constexpr FloatKey kFloatKeys[] = {
+    {"min_range_m", &estimator::DetectorConfig::min_range_m},
+    {"max_range_m", &estimator::DetectorConfig::max_range_m},
+    {"plane_inlier_m", &estimator::DetectorConfig::plane_inlier_m},
+    {"plane_min_inlier_fraction", &estimator::DetectorConfig::plane_min_inlier_fraction},
+    {"gap_margin_m", &estimator::DetectorConfig::gap_margin_m},
+    {"cross_delta_m", &estimator::DetectorConfig::cross_delta_m},
+    {"wall_tolerance_m", &estimator::DetectorConfig::wall_tolerance_m},
+    {"side_width_min_ratio", &estimator::DetectorConfig::side_width_min_ratio},
+    {"side_width_max_ratio", &estimator::DetectorConfig::side_width_max_ratio},
+    {"line_inlier_m", &estimator::DetectorConfig::line_inlier_m},
+    {"cluster_gap_m", &estimator::DetectorConfig::cluster_gap_m},
+    {"beam_length_min_ratio", &estimator::DetectorConfig::beam_length_min_ratio},
+    {"beam_length_max_ratio", &estimator::DetectorConfig::beam_length_max_ratio},
+    {"min_visible_length_m", &estimator::DetectorConfig::min_visible_length_m},
+    {"front_height_tolerance_m", &estimator::DetectorConfig::front_height_tolerance_m},
+    {"end_search_m", &estimator::DetectorConfig::end_search_m},
+    {"target_standoff_m", &estimator::DetectorConfig::target_standoff_m},
+};
+constexpr UintKey kUintKeys[] = {
+    {"plane_iterations", &estimator::DetectorConfig::plane_iterations},
+    {"plane_score_samples", &estimator::DetectorConfig::plane_score_samples},
+    {"line_iterations", &estimator::DetectorConfig::line_iterations},
+    {"line_score_samples", &estimator::DetectorConfig::line_score_samples},
+    {"min_line_inliers", &estimator::DetectorConfig::min_line_inliers},
+    {"line_attempts", &estimator::DetectorConfig::line_attempts},
+    {"max_width", &estimator::DetectorConfig::max_width},
+    {"max_height", &estimator::DetectorConfig::max_height},
+};
+
+std::string at(const std::string& path, const JsonValue& v) { return path + ":" + std::to_string(v.line) + ": "; }
+
+bool read_handrail(const JsonValue& h, const std::string& path, estimator::HandrailGeometry* g, std::string* error) {
+  if (!h.is_object()) {
+    *error = at(path, h) + "\"handrail\" must be an object";
+    return false;
+  }
+  double length = g->bar_length_m;
+  if (const JsonValue* l = h.find("bar_length_m")) {
+    if (!l->is_number()) {
+      *error = at(path, *l) + "\"handrail.bar_length_m\" must be a number";
+      return false;
+    }
+    length = l->number;
+  }
+  if (const JsonValue* kind = h.find("kind")) {
+    if (kind->is_string() && kind->text == "iss") {
+      *g = estimator::iss_handrail(static_cast<float>(length));
+    } else if (kind->is_string() && kind->text == "round") {
+      *g = estimator::paper_round_handrail(static_cast<float>(length));
+    } else {
+      *error = at(path, *kind) + "\"handrail.kind\" must be \"iss\" or \"round\"";
+      return false;
+    }
+  }
+  g->bar_length_m = static_cast<float>(length);
+  for (const auto& m : h.members) {
+    float* field = m.first == "bar_width_m" ? &g->bar_width_m
+                   : m.first == "bar_depth_m" ? &g->bar_depth_m
+                   : m.first == "bar_center_offset_m" ? &g->bar_center_offset_m
+                   : nullptr;
+    if (m.first == "kind" || m.first == "bar_length_m") continue;
+    if (!field) {
+      *error = at(path, m.second) + "unknown key \"handrail." + m.first + "\"";
+      return false;
+    }
+    if (!m.second.is_number()) {
+      *error = at(path, m.second) + "\"handrail." + m.first + "\" must be a number";
+      return false;
+    }
+    *field = static_cast<float>(m.second.number);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool parse_detector_config(const std::string& text, const std::string& path,
+                           estimator::DetectorConfig* cfg, std::string* error) {
+  JsonValue root;
+  std::string json_error;
+  if (!hal::parse_json(text, &root, &json_error)) {
+    *error = path + ":" + json_error.substr(5);
+    return false;
+  }
+  if (!root.is_object()) {
+    *error = at(path, root) + "the configuration must be a JSON object";
+    return false;
+  }
+  estimator::DetectorConfig c = *cfg;
+  for (const auto& m : root.members) {
+    const std::string& key = m.first;
+    const JsonValue& v = m.second;
+    if (key == "handrail") {
+      if (!read_handrail(v, path, &c.handrail, error)) return false;
+      continue;
+    }
+    bool known = false;
+    if (key == "gripper_angle_deg" || key == "seed" || key == "budget_us") {
+      known = true;
+      if (!v.is_number()) {
+        *error = at(path, v) + "\"" + key + "\" must be a number";
+        return false;
+      }
+      if (key == "gripper_angle_deg") c.gripper_angle_rad = static_cast<float>(v.number * M_PI / 180.0);
+      if (key == "seed") c.seed = static_cast<std::uint64_t>(v.number);
+      if (key == "budget_us") c.budget_us = static_cast<std::int64_t>(v.number);
+    }
+    for (const FloatKey& k : kFloatKeys) {
+      if (key != k.name) continue;
+      known = true;
+      if (!v.is_number()) {
+        *error = at(path, v) + "\"" + key + "\" must be a number";
+        return false;
+      }
+      c.*k.field = static_cast<float>(v.number);
+    }
+    for (const UintKey& k : kUintKeys) {
+      if (key != k.name) continue;
+      known = true;
+      if (!v.is_number() || v.number < 0 || v.number > 1e7 || std::floor(v.number) != v.number) {
+        *error = at(path, v) + "\"" + key + "\" must be a non-negative integer";
+        return false;
+      }
+      c.*k.field = static_cast<std::uint32_t>(v.number);
+    }
+    if (!known) {
+      *error = at(path, v) + "unknown key \"" + key + "\"";
+      return false;
+    }
+  }
+  if (const char* bad = estimator::validate(c)) {
+    const JsonValue* v = root.find(bad);
+    *error = path + ":" + std::to_string(v ? v->line : root.line) + ": \"" + bad +
+             "\" is out of range or inconsistent with the other settings";
+    return false;
+  }
+  *cfg = c;
+  return true;
+}
+
+bool load_detector_config(const std::string& path, estimator::DetectorConfig* cfg, std::string* error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *error = path + ": cannot open the configuration file";
+    return false;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_detector_config(text.str(), path, cfg, error);
+}
+
+}  // namespace tools

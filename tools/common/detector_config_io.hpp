@@ -1,0 +1,16 @@
+#pragma once
+// Detector configuration files (JSON). Keys are the DetectorConfig field
+// names; "handrail" takes a kind ("iss" or "round") and a length, or the
+// four geometry numbers. Unknown keys and out-of-range values are errors
+// that name the key and line.
+#include <string>
+
+#include "estimator/config.hpp"
+
+namespace tools {
+
+bool load_detector_config(const std::string& path, estimator::DetectorConfig* cfg, std::string* error);
+bool parse_detector_config(const std::string& text, const std::string& path,
+                           estimator::DetectorConfig* cfg, std::string* error);
+
+}  // namespace tools

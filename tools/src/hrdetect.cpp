@@ -1,0 +1,246 @@
+// hrdetect: runs the handrail detector on organized PCD files and prints one
+// JSON object per frame. See tools/README.md.
+#include <dirent.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "common/depth_picture.hpp"
+#include "common/detection_json.hpp"
+#include "common/detector_config_io.hpp"
+#include "common/frame_convert.hpp"
+#include "estimator/handrail_detector.hpp"
+#include "estimator/pixel_scale.hpp"
+#include "hal/pcd_io.hpp"
+
+namespace {
+
+void usage(FILE* out) {
+  std::fprintf(out,
+               "usage: hrdetect [options] PATH...\n"
+               "Detects the handrail in organized PCD files (or folders of them, taken in\n"
+               "name order) and prints one JSON object per frame on stdout.\n\n"
+               "options:\n"
+               "  --method proposed|basic  the paper's detector (default) or its basic baseline\n"
+               "  --gripper-angle DEG      angle of handrails the gripper takes; 0 (default) =\n"
+               "                           handrails along the image's y axis\n"
+               "  --handrail iss|round     handrail geometry (default iss; see --config)\n"
+               "  --config FILE            detector configuration (JSON; estimator/README.md)\n"
+               "  --debug-png DIR          pictures of each stage per frame (DIR/NAME_STAGE.png)\n"
+               "  -h, --help               this text\n\n"
+               "exit status: 0 when every file was read, 1 when any file could not be\n"
+               "(the others are still processed), 2 for bad options.\n");
+}
+
+bool is_dir(const std::string& path) {
+  struct stat st{};
+  return stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+bool ends_with(const std::string& s, const char* suffix) {
+  const std::size_t n = std::strlen(suffix);
+  return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+}
+
+// Files named on the command line, with folders expanded to their .pcd files.
+bool collect_inputs(const std::vector<std::string>& args, std::vector<std::string>* files) {
+  bool ok = true;
+  for (const std::string& a : args) {
+    if (!is_dir(a)) {
+      files->push_back(a);
+      continue;
+    }
+    DIR* d = opendir(a.c_str());
+    if (!d) {
+      std::fprintf(stderr, "hrdetect: %s: cannot read folder: %s\n", a.c_str(), std::strerror(errno));
+      ok = false;
+      continue;
+    }
+    std::vector<std::string> found;
+    while (dirent* e = readdir(d)) {
+      const std::string name = e->d_name;
+      if (ends_with(name, ".pcd")) found.push_back(a + "/" + name);
+    }
+    closedir(d);
+    std::sort(found.begin(), found.end());
+    if (found.empty()) std::fprintf(stderr, "hrdetect: %s: no .pcd files in this folder\n", a.c_str());
+    files->insert(files->end(), found.begin(), found.end());
+  }
+  return ok;
+}
+
+std::string stem(const std::string& path) {
+  std::string s = path.substr(path.find_last_of('/') + 1);
+  if (ends_with(s, ".pcd")) s.resize(s.size() - 4);
+  return s;
+}
+
+// One picture per stage: the pixels a stage kept in colour over the depth
+// image in grey, like the paper's Figure 5 (a) to (f).
+void write_debug_pictures(const std::string& dir, const std::string& name, const hal::DepthFrame& frame,
+                          const estimator::OrganizedCloud& cloud, const estimator::HandrailDetector& det,
+                          const estimator::HandrailDetection& d) {
+  const estimator::Workspace& ws = det.workspace();
+  const int w = static_cast<int>(frame.width), h = static_cast<int>(frame.height);
+  struct Stage {
+    const char* suffix;
+    const char* title;
+    std::uint8_t flag;
+    tools::Rgb colour;
+  };
+  const Stage stages[] = {
+      {"a_cloud", "A CLOUD", estimator::kFlagValid, {200, 200, 200}},
+      {"b_plane", "B PLANE INLIERS", estimator::kFlagPlane, {60, 190, 70}},
+      {"c_gap", "C GAP DISTANCE", estimator::kFlagGap, {240, 200, 40}},
+      {"d_cross", "D CROSS POINT", estimator::kFlagCrossX | estimator::kFlagCrossY, {40, 180, 200}},
+      {"e_side", "E SIDE WIDTH", estimator::kFlagSide, {230, 120, 30}},
+      {"f_line", "F LINE AND ENDS", estimator::kFlagLine, {220, 40, 40}},
+  };
+  std::string error;
+  const estimator::PixelScale scale = estimator::estimate_pixel_scale(cloud, ws.valid);
+  auto project = [&](const Eigen::Vector3d& p, Eigen::Vector2d* px) {
+    if (!scale.ok || p.z() <= 1e-6) return false;
+    *px = {scale.cx_px + scale.fx_px * p.x() / p.z(), scale.cy_px + scale.fy_px * p.y() / p.z()};
+    return true;
+  };
+  for (const Stage& s : stages) {
+    tools::Image img(w, h);
+    for (int r = 0; r < h; ++r) {
+      for (int c = 0; c < w; ++c) {
+        const std::size_t i = static_cast<std::size_t>(r * w + c);
+        if (!(ws.flags[i] & estimator::kFlagValid)) continue;
+        const std::uint8_t g = static_cast<std::uint8_t>(std::clamp(255.0f - 120.0f * frame.points[i].z_m, 40.0f, 200.0f));
+        img.set(c, r, (ws.flags[i] & s.flag) ? s.colour : tools::Rgb{static_cast<std::uint8_t>(g / 3), static_cast<std::uint8_t>(g / 3), static_cast<std::uint8_t>(g / 3)});
+      }
+    }
+    tools::Image big = img.scaled(tools::kPictureScale);
+    if (s.flag == estimator::kFlagLine && d.status == estimator::DetectStatus::kFound) {
+      for (int e = 0; e < 2; ++e) {
+        Eigen::Vector2d px;
+        if (project(d.ends_cam[e].cast<double>(), &px)) {
+          big.disc((px.x() + 0.5) * tools::kPictureScale, (px.y() + 0.5) * tools::kPictureScale, 5,
+                   d.end_seen[e] ? tools::Rgb{255, 0, 255} : tools::Rgb{120, 120, 255});
+        }
+      }
+    }
+    big.text(4, 4, s.title, {255, 255, 255}, 2);
+    big.write_png(dir + "/" + name + "_" + s.suffix + ".png", &error);
+  }
+  // The final pose over the depth image: centre line, centre, target offset.
+  tools::Image pose = tools::depth_picture(frame);
+  if (d.status == estimator::DetectStatus::kFound) {
+    tools::draw_segment(&pose, project, d.ends_cam[0].cast<double>(), d.ends_cam[1].cast<double>(), {255, 255, 255}, 3);
+    tools::draw_segment(&pose, project, d.p_cam_center.cast<double>(),
+                        (d.p_cam_center + 0.1f * d.normal()).cast<double>(), {255, 0, 0}, 2);
+    tools::draw_segment(&pose, project, d.p_cam_center.cast<double>(),
+                        (d.p_cam_center + 0.1f * d.R_cam_handrail.col(1)).cast<double>(), {0, 255, 0}, 2);
+    pose.text(4, 4, std::string("POSE ") + to_string(d.state), {255, 255, 255}, 2);
+  } else {
+    pose.text(4, 4, std::string("NH ") + to_string(d.status), {255, 255, 255}, 2);
+  }
+  pose.write_png(dir + "/" + name + "_g_pose.png", &error);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  estimator::DetectorConfig cfg;
+  estimator::Method method = estimator::Method::kProposed;
+  std::string config_path, debug_dir, handrail = "iss";
+  double gripper_deg = 0.0;
+  bool gripper_given = false;
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&](const char* what) -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "hrdetect: %s needs a value (see --help)\n", what);
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      usage(stdout);
+      return 0;
+    } else if (a == "--method") {
+      const std::string m = next("--method");
+      if (m == "proposed") method = estimator::Method::kProposed;
+      else if (m == "basic") method = estimator::Method::kBasic;
+      else {
+        std::fprintf(stderr, "hrdetect: --method must be proposed or basic, not '%s'\n", m.c_str());
+        return 2;
+      }
+    } else if (a == "--gripper-angle") {
+      const std::string v = next("--gripper-angle");
+      char* end = nullptr;
+      gripper_deg = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || gripper_deg < 0.0 || gripper_deg > 90.0) {
+        std::fprintf(stderr, "hrdetect: --gripper-angle takes degrees in 0..90, not '%s'\n", v.c_str());
+        return 2;
+      }
+      gripper_given = true;
+    } else if (a == "--handrail") {
+      handrail = next("--handrail");
+      if (handrail != "iss" && handrail != "round") {
+        std::fprintf(stderr, "hrdetect: --handrail must be iss or round, not '%s'\n", handrail.c_str());
+        return 2;
+      }
+    } else if (a == "--config") {
+      config_path = next("--config");
+    } else if (a == "--debug-png") {
+      debug_dir = next("--debug-png");
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "hrdetect: unknown option '%s' (see --help)\n", a.c_str());
+      return 2;
+    } else {
+      args.push_back(a);
+    }
+  }
+  if (args.empty()) {
+    usage(stderr);
+    return 2;
+  }
+  if (handrail == "round") cfg.handrail = estimator::paper_round_handrail(cfg.handrail.bar_length_m);
+  std::string error;
+  if (!config_path.empty() && !tools::load_detector_config(config_path, &cfg, &error)) {
+    std::fprintf(stderr, "hrdetect: %s\n", error.c_str());
+    return 2;
+  }
+  if (gripper_given) cfg.gripper_angle_rad = static_cast<float>(gripper_deg * M_PI / 180.0);
+  if (!debug_dir.empty() && mkdir(debug_dir.c_str(), 0755) != 0 && errno != EEXIST) {
+    std::fprintf(stderr, "hrdetect: cannot create %s: %s\n", debug_dir.c_str(), std::strerror(errno));
+    return 2;
+  }
+
+  std::vector<std::string> files;
+  bool all_read = collect_inputs(args, &files);
+  estimator::HandrailDetector detector(cfg);
+  std::vector<estimator::CloudPoint> buffer;
+  hal::PcdFrame pcd;
+  std::uint64_t frame_id = 0;
+  for (const std::string& file : files) {
+    if (!hal::read_pcd(file, &pcd, &error)) {
+      std::fprintf(stderr, "hrdetect: %s\n", error.c_str());
+      all_read = false;
+      continue;
+    }
+    if (pcd.width > cfg.max_width || pcd.height > cfg.max_height) {
+      std::fprintf(stderr, "hrdetect: %s: frame %ux%u is larger than the configured maximum %ux%u (max_width/max_height)\n",
+                   file.c_str(), pcd.width, pcd.height, cfg.max_width, cfg.max_height);
+      all_read = false;
+      continue;
+    }
+    const hal::DepthFrame frame = pcd.view(frame_id++, 0);
+    const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
+    const estimator::HandrailDetection d = detector.detect(cloud, method);
+    std::printf("%s\n", tools::detection_to_json(file, d).c_str());
+    std::fflush(stdout);
+    if (!debug_dir.empty()) write_debug_pictures(debug_dir, stem(file), frame, cloud, detector, d);
+  }
+  return all_read ? 0 : 1;
+}
