@@ -101,7 +101,7 @@ bool HandrailDetector::verify_candidate(const OrganizedCloud& cloud, const LineM
   if (cluster.count < cfg_.min_line_inliers) return false;
   float front_m = 0.0f;
   if (!bar_front_height_test(cfg_, ws_, inliers, &front_m)) return false;
-  if (!estimate_center_line(cloud, cfg_, wall_, inliers, line)) return false;
+  if (!estimate_center_line(cloud, cfg_, wall_, inliers, ws_.gap, line)) return false;
   detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, ends, end_t);
   // The beam-length check of Algorithm 1 applies in full only when both
   // ends are seen; a bar that runs out of view need only be long enough

@@ -34,7 +34,8 @@ Eigen::Matrix3f handrail_frame(const Eigen::Vector3f& wall_normal,
 }
 
 bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                          const Plane& wall, const IndexList& inliers, CenterLine* line) {
+                          const Plane& wall, const IndexList& inliers, const IndexList& silhouette,
+                          CenterLine* line) {
   const std::size_t n = inliers.size();
   if (n < 3) return false;
   const Eigen::Vector3f& normal = wall.normal;
@@ -61,23 +62,31 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   const Eigen::Vector3f across = R.col(1);
   const Eigen::Vector3f origin = mean.cast<float>();
 
-  // Across the bar: midpoint of the silhouette in each slice along it.
+  // Across the bar: midpoint of its silhouette in each 2 cm slice along
+  // it. The silhouette is taken from every raised pixel near the line (the
+  // gap set), not only from those that passed the cross and side tests: a
+  // cable beside the bar can fail one side's probes for a whole edge row,
+  // which would pull a midpoint of the inliers alone toward the other side.
   float t_min = 0.0f, t_max = 0.0f;
   for (std::size_t k = 0; k < n; ++k) {
     const float t = (point_of(cloud, inliers[k]) - origin).dot(axis);
     t_min = k == 0 ? t : std::fmin(t_min, t);
     t_max = k == 0 ? t : std::fmax(t_max, t);
   }
+  const float half_reach = 0.5f * cfg.handrail.bar_width_m + cfg.line_inlier_m;
   float lo[kMaxSlices], hi[kMaxSlices], mids[kMaxSlices];
   std::uint16_t count[kMaxSlices] = {};
-  for (std::int32_t i : inliers) {
-    const Eigen::Vector3f q = point_of(cloud, i) - origin;
-    int slice = static_cast<int>((q.dot(axis) - t_min) / kSliceLength_m);
-    slice = std::clamp(slice, 0, kMaxSlices - 1);
+  for (std::int32_t i : silhouette) {
+    const Eigen::Vector3f p = point_of(cloud, i);
+    const Eigen::Vector3f q = p - wall.signed_distance(p) * normal - origin;
+    const float t = q.dot(axis);
     const float b = q.dot(across);
+    if (t < t_min || t > t_max || std::fabs(b) > half_reach) continue;
+    int slice = static_cast<int>((t - t_min) / kSliceLength_m);
+    slice = std::clamp(slice, 0, kMaxSlices - 1);
     lo[slice] = count[slice] ? std::fmin(lo[slice], b) : b;
     hi[slice] = count[slice] ? std::fmax(hi[slice], b) : b;
-    ++count[slice];
+    if (count[slice] < 0xFFFF) ++count[slice];
   }
   int n_mids = 0;
   for (int s = 0; s < kMaxSlices; ++s) {

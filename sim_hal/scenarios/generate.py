@@ -44,7 +44,7 @@ def table2(kind):
                       "rpy_deg": [roll, pitch, yaw], "frames": 50})
     return {"name": "table2-" + kind,
             "description": "The paper's Table 2: camera 60 cm from the wall facing a horizontal %s handrail among instruments and cables, 8 poses x 50 frames." % kind,
-            "seed": 2 if kind == "round" else 3, "frame_rate_hz": 5, "scene": scene, "poses": poses}
+            "seed": 2 if kind == "round" else 3, "frame_rate_hz": 5, "gripper_angle_deg": 90, "scene": scene, "poses": poses}
 
 def sweep():
     rails = [{"kind": "iss", "foot": [0, y, 0], "normal": [1, 0, 0], "axis": [0, 0, 1], "length": L}

@@ -283,13 +283,14 @@ bool parse_scenario(const std::string& text, const std::string& path, Scenario* 
     *error = path + ":" + std::to_string(root.line) + ": a scenario must be a JSON object";
     return false;
   }
-  r.unknown_keys(root, {"name", "description", "seed", "frame_rate_hz", "sensor", "scene", "poses"}, "the scenario");
+  r.unknown_keys(root, {"name", "description", "seed", "frame_rate_hz", "gripper_angle_deg", "sensor", "scene", "poses"}, "the scenario");
   if (const JsonValue* name = r.member(root, "name", JsonValue::Type::kString, true)) out->name = name->text;
   if (const JsonValue* d = r.member(root, "description", JsonValue::Type::kString, false)) out->description = d->text;
   double seed = 1;
   r.number(root, "seed", 0, 9007199254740991.0, &seed, false);
   out->seed = static_cast<std::uint64_t>(seed);
   r.number(root, "frame_rate_hz", 0.1, 1000.0, &out->frame_rate_hz, false);
+  r.number(root, "gripper_angle_deg", 0.0, 90.0, &out->gripper_angle_deg, false);
   if (const JsonValue* s = r.member(root, "sensor", JsonValue::Type::kObject, false)) read_sensor(r, *s, &out->sensor);
   if (const JsonValue* sc = r.member(root, "scene", JsonValue::Type::kObject, true)) read_scene(r, *sc, &out->scene);
   if (r.ok()) read_poses(r, root, out);

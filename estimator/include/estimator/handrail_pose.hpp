@@ -28,10 +28,13 @@ Eigen::Matrix3f handrail_frame(const Eigen::Vector3f& wall_normal,
 
 // Fits the centre line to the line inliers: direction by least squares in
 // the wall plane, position across the bar from the midpoints of its visible
-// silhouette (unbiased for round and rounded-rectangle bars seen at an
-// angle), height from the wall from the configured geometry.
+// silhouette (the raised pixels of `silhouette` near the line: unbiased for
+// round and rounded-rectangle bars seen at an angle, since both edges of the
+// silhouette are the bar's extremes across), height from the wall from the
+// configured geometry.
 bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                          const Plane& wall, const IndexList& inliers, CenterLine* line);
+                          const Plane& wall, const IndexList& inliers, const IndexList& silhouette,
+                          CenterLine* line);
 
 // Walks the image past each extreme inlier along the bar. An end is seen
 // when the walk leaves the bar and meets the wall; it is not seen when the

@@ -16,6 +16,9 @@ struct Scenario {
   std::string description;
   std::uint64_t seed = 1;
   double frame_rate_hz = 5.0;
+  // The angle of handrails the gripper takes (0 = along the image's y
+  // axis); evaluation picks the target handrail by it.
+  double gripper_angle_deg = 0.0;
   ToFSettings sensor;
   Scene scene;
   std::vector<Eigen::Isometry3d> T_world_cam;  // one per frame

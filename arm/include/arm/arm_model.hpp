@@ -1,0 +1,43 @@
+#pragma once
+// The perching arm: a proximal (tilt) joint, a distal (pan) joint and the
+// gripper, mounted on the robot's aft face. Geometry comes from ArmGeometry;
+// the defaults describe the 24 cm prototype arm.
+//
+// Body frame: x forward, y left, z up. The arm is mounted at `p_body_base`
+// pointing aft (-x) when both joints are at zero. Tilt turns about the
+// body's y axis; pan then turns about the tilted link's z axis.
+#include <Eigen/Geometry>
+
+namespace arm {
+
+struct JointLimits {
+  double min_rad, max_rad;
+  bool contains(double q) const { return q >= min_rad && q <= max_rad; }
+};
+
+struct ArmGeometry {
+  Eigen::Vector3d p_body_base = Eigen::Vector3d(-0.16, 0.0, -0.05);  // tilt joint, m
+  double proximal_link_m = 0.10;  // tilt axis to pan axis
+  double distal_link_m = 0.14;    // pan axis to the gripper's grasp point
+  JointLimits tilt{-120.0 * M_PI / 180.0, 90.0 * M_PI / 180.0};
+  JointLimits pan{-90.0 * M_PI / 180.0, 90.0 * M_PI / 180.0};
+};
+
+struct JointAngles {
+  double tilt_rad = 0.0;
+  double pan_rad = 0.0;
+};
+
+// Named postures. Stowed folds the arm under the body; deployed holds the
+// link straight aft; grip is deployed with the gripper square to the wall.
+enum class Posture { kStow, kDeploy, kGrip };
+const char* to_string(Posture posture);
+JointAngles posture_angles(Posture posture);
+
+bool within_limits(const ArmGeometry& g, const JointAngles& q);
+
+// The gripper's grasp frame in the body frame: origin at the grasp point,
+// x along the distal link (outward), z along the pan axis.
+Eigen::Isometry3d forward_kinematics(const ArmGeometry& g, const JointAngles& q);
+
+}  // namespace arm

@@ -1,0 +1,224 @@
+// The whole detector: synthetic scenes, recorded simulator frames, and the
+// contract of its results (no stale pose, stamps, determinism, budget).
+#include <Eigen/Geometry>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "cmocka_cpp.hpp"
+#include "estimator/handrail_detector.hpp"
+#include "hal/json.hpp"
+#include "hal/pcd_io.hpp"
+#include "synthetic_cloud.hpp"
+#include "test_data.hpp"
+
+using namespace estimator;
+
+namespace {
+
+constexpr double kWall = 0.6, kOffset = 0.0825;
+
+DetectorConfig synthetic_config() {
+  DetectorConfig cfg;
+  cfg.handrail = paper_round_handrail(0.3f);
+  cfg.max_width = 160;
+  cfg.max_height = 120;
+  return cfg;
+}
+
+testing_support::SyntheticScene bar_scene(double noise = 0.0) {
+  testing_support::SyntheticScene s;
+  s.cylinders.push_back(testing_support::vertical_bar(kWall, kOffset, 0.3));
+  s.noise_m = noise;
+  return s;
+}
+
+void assert_no_pose(const HandrailDetection& d) {
+  assert_int_equal(static_cast<int>(d.state), static_cast<int>(HandrailState::kNoHandrail));
+  assert_true(d.p_cam_center.isZero());
+  assert_true(d.R_cam_handrail.isZero());
+  assert_true(d.p_cam_target.isZero());
+  assert_false(d.end_seen[0] || d.end_seen[1]);
+  assert_int_equal(d.inliers, 0);
+}
+
+void test_synthetic_bar_both_ends(void**) {
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(bar_scene(0.001), &pts, 42);
+  HandrailDetector det(synthetic_config());
+  const HandrailDetection d = det.detect(cloud);
+  assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFound));
+  assert_int_equal(static_cast<int>(d.state), static_cast<int>(HandrailState::kBothEnds));
+  // On the centre line, midway between the ends.
+  assert_near(d.p_cam_center.x(), 0.0, 0.003);
+  assert_near(d.p_cam_center.y(), 0.0, 0.01);
+  assert_near(d.p_cam_center.z(), kWall - kOffset, 0.003);
+  assert_near(d.beam_length_m, 0.3, 0.015);
+  assert_near(std::fabs(d.axis().y()), 1.0, 1e-3);
+  assert_near(d.normal().z(), -1.0, 1e-3);
+  assert_int_equal(d.frame_id, 42);
+  assert_int_equal(d.capture_time_us, 42000);
+  // Target pose: straight out from the wall by the standoff.
+  assert_near(d.p_cam_target.z(), kWall - kOffset - det.config().target_standoff_m, 1e-4);
+}
+
+void test_wall_only_reports_no_handrail(void**) {
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(testing_support::SyntheticScene{}, &pts, 7);
+  HandrailDetector det(synthetic_config());
+  // A detection first, so that a stale pose could leak.
+  std::vector<CloudPoint> bar_pts;
+  assert_int_equal(static_cast<int>(det.detect(testing_support::render(bar_scene(), &bar_pts)).status),
+                   static_cast<int>(DetectStatus::kFound));
+  const HandrailDetection d = det.detect(cloud);
+  assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kNoCandidates));
+  assert_no_pose(d);
+  assert_int_equal(d.frame_id, 7);
+  assert_int_equal(d.capture_time_us, 7000);
+}
+
+void test_invalid_and_oversized_frames(void**) {
+  HandrailDetector det(synthetic_config());
+  std::vector<CloudPoint> pts(160 * 120, CloudPoint{NAN, NAN, NAN, 0, 0, 255});
+  // Mix the three ways of being invalid.
+  for (std::size_t i = 0; i < pts.size(); i += 3) pts[i] = CloudPoint{0.1f, 0.1f, 0.0f, 0, 0, 255};
+  for (std::size_t i = 1; i < pts.size(); i += 3) pts[i] = CloudPoint{0.1f, 0.1f, 0.5f, 0, 0, 0};
+  const OrganizedCloud invalid{1, 1, 160, 120, pts.data()};
+  HandrailDetection d = det.detect(invalid);
+  assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kEmptyFrame));
+  assert_no_pose(d);
+  std::vector<CloudPoint> big(200 * 120);
+  const OrganizedCloud oversized{2, 2, 200, 120, big.data()};
+  d = det.detect(oversized);
+  assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFrameTooLarge));
+  assert_no_pose(d);
+  const OrganizedCloud empty{3, 3, 0, 0, nullptr};
+  assert_int_equal(static_cast<int>(det.detect(empty).status), static_cast<int>(DetectStatus::kEmptyFrame));
+}
+
+void test_repeatable(void**) {
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(bar_scene(0.003), &pts, 5);
+  HandrailDetector a(synthetic_config()), b(synthetic_config());
+  const HandrailDetection d1 = a.detect(cloud);
+  // An unrelated frame in between must not change the answer.
+  std::vector<CloudPoint> other;
+  a.detect(testing_support::render(testing_support::SyntheticScene{}, &other, 9));
+  const HandrailDetection d2 = a.detect(cloud);
+  const HandrailDetection d3 = b.detect(cloud);
+  for (const HandrailDetection* d : {&d2, &d3}) {
+    assert_true(d->p_cam_center == d1.p_cam_center);
+    assert_true(d->R_cam_handrail == d1.R_cam_handrail);
+    assert_int_equal(d->inliers, d1.inliers);
+  }
+}
+
+// A clock that jumps 5 ms whenever it is read.
+class SteppingTime final : public TimeSource {
+ public:
+  std::int64_t now_us() const override { return t_ += 5000; }
+
+ private:
+  mutable std::int64_t t_ = 0;
+};
+
+void test_budget_overrun_is_reported(void**) {
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(bar_scene(), &pts, 1);
+  DetectorConfig cfg = synthetic_config();
+  cfg.budget_us = 1000;
+  SteppingTime time;
+  HandrailDetector det(cfg, &time);
+  const HandrailDetection d = det.detect(cloud);
+  assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kDeadlineMissed));
+  assert_no_pose(d);
+  assert_true(d.processing_time_us >= 5000);
+  cfg.budget_us = 0;  // no budget: the same clock is no obstacle
+  HandrailDetector unlimited(cfg, &time);
+  assert_int_equal(static_cast<int>(unlimited.detect(cloud).status), static_cast<int>(DetectStatus::kFound));
+}
+
+struct Truth {
+  Eigen::Vector3f ends[2], normal;
+  float length;
+};
+
+Truth read_truth(const std::string& name) {
+  hal::JsonValue root;
+  std::string error;
+  assert_true(hal::parse_json(testing_support::read_text(testing_support::data_path(name)), &root, &error));
+  const hal::JsonValue& h = root.find("handrails")->items[0];
+  Truth t;
+  for (int e = 0; e < 2; ++e)
+    for (int k = 0; k < 3; ++k) t.ends[e][k] = static_cast<float>(h.find("ends")->items[e].items[k].number);
+  for (int k = 0; k < 3; ++k) t.normal[k] = static_cast<float>(h.find("normal")->items[k].number);
+  t.length = static_cast<float>(h.find("length")->number);
+  return t;
+}
+
+HandrailDetection detect_recorded(const std::string& pcd, const HandrailGeometry& geometry, Method method) {
+  hal::PcdFrame frame;
+  std::string error;
+  if (!hal::read_pcd(testing_support::data_path(pcd), &frame, &error)) {
+    print_error("%s\n", error.c_str());
+    fail();
+  }
+  std::vector<CloudPoint> pts(frame.points.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const hal::DepthPoint& p = frame.points[i];
+    pts[i] = {p.x_m, p.y_m, p.z_m, p.noise_m, p.gray_value, p.confidence};
+  }
+  DetectorConfig cfg;
+  cfg.handrail = geometry;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // these rails run along image x
+  HandrailDetector det(cfg);
+  return det.detect(OrganizedCloud{0, 0, frame.width, frame.height, pts.data()}, method);
+}
+
+void check_against_truth(const HandrailDetection& d, const Truth& t) {
+  assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFound));
+  const Eigen::Vector3f axis = (t.ends[1] - t.ends[0]).normalized();
+  const Eigen::Vector3f rel = d.p_cam_center - t.ends[0];
+  const float perpendicular = (rel - rel.dot(axis) * axis).norm();
+  assert_true(perpendicular < 0.005f);
+  assert_true(std::acos(std::fmin(1.0f, std::fabs(axis.dot(d.axis())))) < 1.0f * M_PI / 180.0f);
+  assert_true(std::acos(std::fmin(1.0f, d.normal().dot(t.normal))) < 1.0f * M_PI / 180.0f);
+  assert_int_equal(static_cast<int>(d.state), static_cast<int>(HandrailState::kBothEnds));
+  assert_near(d.beam_length_m, t.length, 0.02);
+}
+
+void test_recorded_iss_and_round_frames(void**) {
+  check_against_truth(detect_recorded("table2-iss-1.pcd", iss_handrail(0.55f), Method::kProposed),
+                      read_truth("table2-iss-1.truth.json"));
+  check_against_truth(detect_recorded("table2-round-2.pcd", paper_round_handrail(0.55f), Method::kProposed),
+                      read_truth("table2-round-2.truth.json"));
+}
+
+void test_recorded_clutter_has_no_handrail(void**) {
+  const HandrailDetection d = detect_recorded("clutter-only-0.pcd", iss_handrail(0.55f), Method::kProposed);
+  assert_int_not_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFound));
+  assert_no_pose(d);
+}
+
+void test_basic_method_runs(void**) {
+  const HandrailDetection d = detect_recorded("table2-round-2.pcd", paper_round_handrail(0.55f), Method::kBasic);
+  assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFound));
+  assert_int_equal(static_cast<int>(d.state), static_cast<int>(HandrailState::kNoEnd));
+  assert_true(d.inliers > 0);
+}
+
+}  // namespace
+
+int main() {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_synthetic_bar_both_ends),
+      cmocka_unit_test(test_wall_only_reports_no_handrail),
+      cmocka_unit_test(test_invalid_and_oversized_frames),
+      cmocka_unit_test(test_repeatable),
+      cmocka_unit_test(test_budget_overrun_is_reported),
+      cmocka_unit_test(test_recorded_iss_and_round_frames),
+      cmocka_unit_test(test_recorded_clutter_has_no_handrail),
+      cmocka_unit_test(test_basic_method_runs),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}

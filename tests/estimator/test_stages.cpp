@@ -1,0 +1,285 @@
+// Each stage of the detector on small analytic scenes.
+#include <Eigen/Geometry>
+#include <cmath>
+#include <vector>
+
+#include "cmocka_cpp.hpp"
+#include "estimator/handrail_detector.hpp"
+#include "estimator/handrail_filters.hpp"
+#include "estimator/handrail_pose.hpp"
+#include "estimator/line_estimation.hpp"
+#include "estimator/plane_estimation.hpp"
+#include "synthetic_cloud.hpp"
+
+using namespace estimator;
+using testing_support::SyntheticScene;
+
+namespace {
+
+constexpr double kWall = 0.6;
+constexpr double kOffset = 0.065 + 0.0175;  // the paper's bar centre line
+
+DetectorConfig test_config(float bar_length = 0.3f) {
+  DetectorConfig cfg;
+  cfg.handrail = paper_round_handrail(bar_length);
+  cfg.max_width = 160;
+  cfg.max_height = 120;
+  return cfg;
+}
+
+SyntheticScene bar_scene(double noise = 0.0) {
+  SyntheticScene s;
+  s.cylinders.push_back(testing_support::vertical_bar(kWall, kOffset, 0.3));
+  s.noise_m = noise;
+  return s;
+}
+
+// Runs the stages up to the filters on a scene; returns the wall.
+Plane run_filters(const OrganizedCloud& cloud, const DetectorConfig& cfg, Workspace& ws, PixelScale* scale) {
+  ws.valid.clear();
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    ws.flags[i] = 0;
+    ws.signed_distance_m[i] = NAN;
+    if (is_valid_point(cloud.points[i])) {
+      ws.flags[i] = kFlagValid;
+      ws.valid.push(static_cast<std::int32_t>(i));
+    }
+  }
+  Random rng(7);
+  *scale = estimate_pixel_scale(cloud, ws.valid);
+  const PlaneEstimate plane = estimate_plane(cloud, cfg, rng, ws);
+  assert_true(plane.found);
+  gap_distance_test(cloud, cfg, ws);
+  cross_point_test(cloud, cfg, plane.plane, *scale, ws);
+  side_width_test(cloud, cfg, *scale, ws);
+  return plane.plane;
+}
+
+void test_pixel_scale_recovers_projection(void**) {
+  SyntheticScene s;
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(s, &pts);
+  Workspace ws(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) ws.valid.push(static_cast<std::int32_t>(i));
+  const PixelScale scale = estimate_pixel_scale(cloud, ws.valid);
+  assert_true(scale.ok);
+  assert_near(scale.fx_px, s.f_px, 0.01);
+  assert_near(scale.cx_px, s.cx, 0.01);
+  assert_near(scale.cy_px, s.cy, 0.01);
+}
+
+void test_plane_fronto_parallel_and_tilted(void**) {
+  const DetectorConfig cfg = test_config();
+  for (double tilt_deg : {0.0, 30.0, 50.0}) {
+    SyntheticScene s;
+    const double t = tilt_deg * M_PI / 180.0;
+    s.nx = -std::sin(t);
+    s.nz = -std::cos(t);
+    s.noise_m = 0.002;
+    std::vector<CloudPoint> pts;
+    const OrganizedCloud cloud = testing_support::render(s, &pts);
+    Workspace ws(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      ws.flags[i] = kFlagValid;
+      ws.valid.push(static_cast<std::int32_t>(i));
+    }
+    Random rng(3);
+    const PlaneEstimate p = estimate_plane(cloud, cfg, rng, ws);
+    assert_true(p.found);
+    // Normal toward the camera, distance right to a millimetre.
+    assert_near(p.plane.normal.x(), s.nx, 0.01);
+    assert_near(p.plane.normal.z(), s.nz, 0.01);
+    assert_near(p.plane.d, kWall, 0.001);
+    assert_true(p.inliers > cloud.size() * 9 / 10);
+  }
+}
+
+void test_plane_fails_without_support(void**) {
+  // Points scattered in depth: no plane has 20 % support.
+  SyntheticScene s;
+  std::vector<CloudPoint> pts;
+  testing_support::render(s, &pts);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const float z = 0.3f + 0.9f * static_cast<float>((i * 7919) % 1000) / 1000.0f;
+    const float k = z / pts[i].z_m;
+    pts[i].x_m *= k;
+    pts[i].y_m *= k;
+    pts[i].z_m = z;
+  }
+  OrganizedCloud cloud{0, 0, 160, 120, pts.data()};
+  Workspace ws(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) ws.valid.push(static_cast<std::int32_t>(i));
+  Random rng(3);
+  assert_false(estimate_plane(cloud, test_config(), rng, ws).found);
+}
+
+void test_fit_plane_orients_toward_camera(void**) {
+  const CloudPoint pts[3] = {{0, 0, 1, 0, 0, 255}, {1, 0, 1, 0, 0, 255}, {0, 1, 1, 0, 0, 255}};
+  const OrganizedCloud cloud{0, 0, 3, 1, pts};
+  const std::int32_t idx[3] = {0, 1, 2};
+  Plane plane;
+  assert_true(fit_plane_least_squares(cloud, idx, 3, &plane));
+  assert_near(plane.normal.z(), -1.0, 1e-6);
+  assert_near(plane.d, 1.0, 1e-6);
+  assert_true(plane.signed_distance(Eigen::Vector3f(0, 0, 0.5f)) > 0.0f);
+  assert_false(fit_plane_least_squares(cloud, idx, 2, &plane));
+}
+
+void test_filters_keep_the_bar_and_drop_a_thin_cable(void**) {
+  SyntheticScene s = bar_scene();
+  // A 6 mm cable at the bar's height, 12 cm to the side: passes the gap and
+  // cross tests but not the width test.
+  s.cylinders.push_back(testing_support::vertical_bar(kWall, kOffset, 0.3, 0.003, 0.12));
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(s, &pts);
+  const DetectorConfig cfg = test_config();
+  Workspace ws(cloud.size());
+  PixelScale scale;
+  run_filters(cloud, cfg, ws, &scale);
+  // Centre pixel of the bar and of the cable, in the middle row.
+  const int row = 61;
+  const int bar_col = static_cast<int>(std::lround(s.cx + s.f_px * 0.0 / (kWall - kOffset)));
+  const int cable_col = static_cast<int>(std::lround(s.cx + s.f_px * 0.12 / (kWall - kOffset)));
+  const std::uint8_t bar = ws.flags[row * 160 + bar_col];
+  const std::uint8_t cable = ws.flags[row * 160 + cable_col];
+  const std::uint8_t wall = ws.flags[row * 160 + 5];
+  assert_true(bar & kFlagGap);
+  assert_true(bar & kFlagCrossX);
+  assert_false(bar & kFlagCrossY);  // along the bar, the probes land on the bar
+  assert_true(bar & kFlagSide);
+  assert_true(cable & kFlagGap);
+  assert_true(cable & kFlagCrossX);
+  assert_false(cable & kFlagSide);
+  assert_false(wall & kFlagGap);
+  assert_true(ws.side.size() > 100);
+}
+
+void test_candidates_cluster_and_select(void**) {
+  SyntheticScene s = bar_scene();
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(s, &pts);
+  const DetectorConfig cfg = test_config();
+  Workspace ws(cloud.size());
+  PixelScale scale;
+  const Plane wall = run_filters(cloud, cfg, ws, &scale);
+  Random rng(11);
+  LineModel cand[2];
+  estimate_handrail_candidates(cloud, cfg, wall, rng, ws.side, cand);
+  const int k = cand[0].score >= cand[1].score ? 0 : 1;
+  assert_true(cand[k].valid);
+  assert_near(cand[k].psi_rad, 0.0, 0.05);  // along image y
+  collect_line_inliers(cloud, cfg, wall, cand[k], ws.side, ws.line[0]);
+  const Cluster c = cluster_along_line(cloud, cfg, cand[k], ws.line[0], ws.line_t_m.get());
+  assert_near(c.length_m(), 0.3, 0.02);
+  assert_int_equal(c.count, ws.line[0].size());
+  float front = 0.0f;
+  assert_true(bar_front_height_test(cfg, ws, ws.line[0], &front));
+  assert_near(front, kOffset + 0.0175, 0.003);
+
+  // Algorithm 1's selection by the gripper angle.
+  LineModel two[2];
+  two[0].psi_rad = 0.0f;
+  two[1].psi_rad = static_cast<float>(M_PI / 2);
+  bool usable[2] = {true, true};
+  DetectorConfig g = cfg;
+  g.gripper_angle_rad = static_cast<float>(M_PI / 2);
+  assert_int_equal(select_by_gripper_angle(g, two, usable), 1);
+  g.gripper_angle_rad = 0.1f;
+  assert_int_equal(select_by_gripper_angle(g, two, usable), 0);
+  usable[0] = false;
+  assert_int_equal(select_by_gripper_angle(g, two, usable), 1);
+  usable[1] = false;
+  assert_int_equal(select_by_gripper_angle(g, two, usable), -1);
+}
+
+void test_cluster_splits_at_gaps(void**) {
+  // Two collinear bars 10 cm apart: the larger run wins.
+  SyntheticScene s;
+  s.cylinders.push_back({0.0, -0.16, kWall - kOffset, 0, 1, 0, 0.0175, 0.0, 0.12});
+  s.cylinders.push_back({0.0, 0.06, kWall - kOffset, 0, 1, 0, 0.0175, 0.0, 0.10});
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(s, &pts);
+  const DetectorConfig cfg = test_config();
+  Workspace ws(cloud.size());
+  PixelScale scale;
+  const Plane wall = run_filters(cloud, cfg, ws, &scale);
+  LineModel line{true, Eigen::Vector3f(0, 0, static_cast<float>(kWall)), Eigen::Vector3f(0, 1, 0), 0.0f, 0};
+  collect_line_inliers(cloud, cfg, wall, line, ws.side, ws.line[0]);
+  const std::size_t before = ws.line[0].size();
+  const Cluster c = cluster_along_line(cloud, cfg, line, ws.line[0], ws.line_t_m.get());
+  assert_true(c.count < before);
+  assert_near(c.length_m(), 0.12, 0.02);
+  assert_true(c.t_min_m < -0.1f);
+}
+
+void test_handrail_frame_is_eq5(void**) {
+  const Eigen::Vector3f n = Eigen::Vector3f(-0.3f, 0.1f, -1.0f).normalized();
+  const Eigen::Vector3f line = Eigen::Vector3f(0.1f, 1.0f, 0.2f).normalized();
+  const Eigen::Matrix3f R = handrail_frame(n, line);
+  assert_near((R.transpose() * R - Eigen::Matrix3f::Identity()).norm(), 0.0, 1e-5);
+  assert_near(R.determinant(), 1.0, 1e-5);
+  assert_near((R.col(0) - n).norm(), 0.0, 1e-6);
+  assert_near(R.col(2).dot(n), 0.0, 1e-6);
+  // Sign: a bar nearer vertical points up the image (-y).
+  assert_true(R.col(2).y() < 0.0f);
+  assert_near((R.col(1) - R.col(2).cross(R.col(0))).norm(), 0.0, 1e-6);
+  // The projection of the line keeps its direction.
+  const Eigen::Vector3f proj = (line - line.dot(n) * n).normalized();
+  assert_near(std::fabs(proj.dot(R.col(2))), 1.0, 1e-6);
+}
+
+void test_target_pose(void**) {
+  DetectorConfig cfg = test_config();
+  cfg.target_standoff_m = 0.4f;
+  const Eigen::Matrix3f R = handrail_frame(Eigen::Vector3f(0, 0, -1), Eigen::Vector3f(0, 1, 0));
+  Eigen::Vector3f p;
+  Eigen::Matrix3f Rt;
+  target_pose(cfg, Eigen::Vector3f(0.1f, 0.0f, 0.5f), R, &p, &Rt);
+  assert_near(p.z(), 0.1, 1e-6);
+  assert_near(p.x(), 0.1, 1e-6);
+  assert_near((Rt - R).norm(), 0.0, 1e-9);
+  // [v_P v_o v_L] with v_o = v_L x v_P.
+  assert_near((Rt.col(1) - Rt.col(2).cross(Rt.col(0))).norm(), 0.0, 1e-6);
+}
+
+void test_handrail_state(void**) {
+  const bool both[2] = {true, true}, one[2] = {false, true}, none[2] = {false, false};
+  assert_int_equal(static_cast<int>(handrail_state(both)), static_cast<int>(HandrailState::kBothEnds));
+  assert_int_equal(static_cast<int>(handrail_state(one)), static_cast<int>(HandrailState::kOneEnd));
+  assert_int_equal(static_cast<int>(handrail_state(none)), static_cast<int>(HandrailState::kNoEnd));
+  assert_string_equal(to_string(HandrailState::kBothEnds), "BE");
+  assert_string_equal(to_string(HandrailState::kNoHandrail), "NH");
+  assert_string_equal(to_string(DetectStatus::kDeadlineMissed), "DEADLINE_MISSED");
+}
+
+void test_config_validation_names_the_field(void**) {
+  DetectorConfig cfg = test_config();
+  assert_null(validate(cfg));
+  cfg.line_iterations = 0;
+  assert_string_equal(validate(cfg), "line_iterations");
+  cfg = test_config();
+  cfg.handrail.bar_center_offset_m = 0.01f;
+  assert_string_equal(validate(cfg), "handrail.bar_center_offset_m");
+  cfg = test_config();
+  cfg.max_range_m = 0.05f;
+  assert_string_equal(validate(cfg), "max_range_m");
+}
+
+}  // namespace
+
+int main() {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_pixel_scale_recovers_projection),
+      cmocka_unit_test(test_plane_fronto_parallel_and_tilted),
+      cmocka_unit_test(test_plane_fails_without_support),
+      cmocka_unit_test(test_fit_plane_orients_toward_camera),
+      cmocka_unit_test(test_filters_keep_the_bar_and_drop_a_thin_cable),
+      cmocka_unit_test(test_candidates_cluster_and_select),
+      cmocka_unit_test(test_cluster_splits_at_gaps),
+      cmocka_unit_test(test_handrail_frame_is_eq5),
+      cmocka_unit_test(test_target_pose),
+      cmocka_unit_test(test_handrail_state),
+      cmocka_unit_test(test_config_validation_names_the_field),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}

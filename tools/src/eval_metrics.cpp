@@ -1,0 +1,122 @@
+#include "eval_metrics.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "estimator/handrail_pose.hpp"
+
+namespace tools {
+namespace {
+constexpr double kRadToDeg = 180.0 / M_PI;
+}
+
+int target_handrail(const sim_hal::FrameTruth& truth, double gripper_angle_rad) {
+  int best = -1;
+  double best_diff = 0.0;
+  for (std::size_t k = 0; k < truth.handrails.size(); ++k) {
+    const sim_hal::HandrailTruth& h = truth.handrails[k];
+    if (h.visible_fraction < 0.3) continue;
+    const double psi = std::atan2(std::fabs(h.axis_cam.x()), std::fabs(h.axis_cam.y()));
+    const double diff = std::fabs(psi - gripper_angle_rad);
+    if (best < 0 || diff < best_diff) {
+      best = static_cast<int>(k);
+      best_diff = diff;
+    }
+  }
+  return best;
+}
+
+FrameErrors score_detection(const estimator::HandrailDetection& d, const sim_hal::HandrailTruth& t) {
+  const Eigen::Matrix3f R_gt = estimator::handrail_frame(t.normal_cam.cast<float>(), t.axis_cam.cast<float>());
+  const Eigen::Vector3f e = R_gt.transpose() * (d.p_cam_center - t.center_cam.cast<float>());
+  FrameErrors out{};
+  out.x_mm = 1000.0 * e.x();
+  out.y_mm = 1000.0 * e.y();
+  out.z_mm = 1000.0 * e.z();
+  out.perpendicular_mm = std::hypot(out.x_mm, out.y_mm);
+  const Eigen::AngleAxisf err(R_gt.transpose() * d.R_cam_handrail);
+  const Eigen::Vector3f rotvec = err.axis() * err.angle();
+  out.roll_deg = kRadToDeg * rotvec.x();
+  out.pitch_deg = kRadToDeg * rotvec.y();
+  out.yaw_deg = kRadToDeg * rotvec.z();
+  out.axis_deg = kRadToDeg * std::acos(std::min(1.0f, std::fabs(R_gt.col(2).dot(d.axis()))));
+  out.normal_deg = kRadToDeg * std::acos(std::clamp(R_gt.col(0).dot(d.normal()), -1.0f, 1.0f));
+  out.beam_mm = d.state == estimator::HandrailState::kBothEnds ? 1000.0 * (d.beam_length_m - t.length_m) : NAN;
+  return out;
+}
+
+bool is_correct(const FrameErrors& e) { return e.perpendicular_mm < 50.0 && e.axis_deg < 15.0; }
+
+estimator::HandrailState expected_state(const sim_hal::HandrailTruth& t) {
+  const int n = (t.end_in_view[0] ? 1 : 0) + (t.end_in_view[1] ? 1 : 0);
+  return n == 2 ? estimator::HandrailState::kBothEnds
+         : n == 1 ? estimator::HandrailState::kOneEnd
+                  : estimator::HandrailState::kNoEnd;
+}
+
+double Stats::mean() const {
+  if (values.empty()) return NAN;
+  double s = 0.0;
+  for (double v : values) s += v;
+  return s / static_cast<double>(values.size());
+}
+
+double Stats::stddev() const {
+  if (values.size() < 2) return 0.0;
+  const double m = mean();
+  double s = 0.0;
+  for (double v : values) s += (v - m) * (v - m);
+  return std::sqrt(s / static_cast<double>(values.size() - 1));
+}
+
+double Stats::median() const {
+  if (values.empty()) return NAN;
+  std::vector<double> v = values;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+std::string Stats::mean_sd(int decimals) const {
+  if (values.empty()) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f ± %.*f", decimals, mean(), decimals, stddev());
+  return buf;
+}
+
+void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth, int target) {
+  ++frames;
+  time_ms.add(d.processing_time_us / 1000.0);
+  const bool has_target = target >= 0;
+  target_frames += has_target;
+  if (d.status != estimator::DetectStatus::kFound) return;
+  ++found;
+  if (!has_target) {
+    ++false_found;
+    return;
+  }
+  const sim_hal::HandrailTruth& t = truth.handrails[static_cast<std::size_t>(target)];
+  const FrameErrors e = score_detection(d, t);
+  if (!is_correct(e)) {
+    ++false_found;
+  } else {
+    ++correct;
+    ++state_checked;
+    state_right += d.state == expected_state(t);
+  }
+  // Errors over every detection of a frame that has a target, as the
+  // paper's Figure 15 does: picking a cable shows up as a large error.
+  x.add(e.x_mm);
+  y.add(e.y_mm);
+  if (d.state == estimator::HandrailState::kBothEnds) z.add(e.z_mm);
+  perpendicular.add(e.perpendicular_mm);
+  roll.add(e.roll_deg);
+  pitch.add(e.pitch_deg);
+  yaw.add(e.yaw_deg);
+  axis.add(e.axis_deg);
+  normal.add(e.normal_deg);
+  if (!std::isnan(e.beam_mm)) beam.add(e.beam_mm);
+}
+
+}  // namespace tools
