@@ -4,18 +4,24 @@ namespace arm {
 
 const char* to_string(Posture posture) {
   switch (posture) {
-    case Posture::kStow: return "STOW";
-    case Posture::kDeploy: return "DEPLOY";
-    case Posture::kGrip: return "GRIP";
+    case Posture::kStow:
+      return "STOW";
+    case Posture::kDeploy:
+      return "DEPLOY";
+    case Posture::kGrip:
+      return "GRIP";
   }
   return "UNKNOWN";
 }
 
 JointAngles posture_angles(Posture posture) {
   switch (posture) {
-    case Posture::kStow: return {90.0 * M_PI / 180.0, 0.0};
-    case Posture::kDeploy: return {0.0, 0.0};
-    case Posture::kGrip: return {0.0, 0.0};
+    case Posture::kStow:
+      return {90.0 * M_PI / 180.0, 0.0};
+    case Posture::kDeploy:
+      return {0.0, 0.0};
+    case Posture::kGrip:
+      return {0.0, 0.0};
   }
   return {};
 }

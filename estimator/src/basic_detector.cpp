@@ -81,7 +81,8 @@ void HandrailDetector::run_basic(const OrganizedCloud& cloud, HandrailDetection*
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
   solver.computeDirect(cov);
-  const Eigen::Matrix3f R = handrail_frame(wall_.normal, solver.eigenvectors().col(2).cast<float>());
+  const Eigen::Matrix3f R =
+      handrail_frame(wall_.normal, solver.eigenvectors().col(2).cast<float>());
   const Eigen::Vector3f center = mean.cast<float>();
   float t_min = 0.0f, t_max = 0.0f;
   for (std::int32_t i : inliers) {

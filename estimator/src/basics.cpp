@@ -19,7 +19,9 @@ HandrailGeometry paper_round_handrail(float bar_length_m) {
   return {0.035f, 0.035f, 0.065f + 0.0175f, bar_length_m};
 }
 
-HandrailGeometry iss_handrail(float bar_length_m) { return {0.019f, 0.035f, 0.061f, bar_length_m}; }
+HandrailGeometry iss_handrail(float bar_length_m) {
+  return {0.019f, 0.035f, 0.061f, bar_length_m};
+}
 
 float gap_min_m(const DetectorConfig& cfg) {
   return cfg.handrail.bar_center_offset_m - 0.5f * cfg.handrail.bar_depth_m - cfg.gap_margin_m;
@@ -65,23 +67,34 @@ const char* validate(const DetectorConfig& c) {
 
 const char* to_string(HandrailState state) {
   switch (state) {
-    case HandrailState::kNoHandrail: return "NH";
-    case HandrailState::kBothEnds: return "BE";
-    case HandrailState::kOneEnd: return "OE";
-    case HandrailState::kNoEnd: return "NE";
+    case HandrailState::kNoHandrail:
+      return "NH";
+    case HandrailState::kBothEnds:
+      return "BE";
+    case HandrailState::kOneEnd:
+      return "OE";
+    case HandrailState::kNoEnd:
+      return "NE";
   }
   return "??";
 }
 
 const char* to_string(DetectStatus status) {
   switch (status) {
-    case DetectStatus::kFound: return "FOUND";
-    case DetectStatus::kEmptyFrame: return "EMPTY_FRAME";
-    case DetectStatus::kFrameTooLarge: return "FRAME_TOO_LARGE";
-    case DetectStatus::kNoPlane: return "NO_PLANE";
-    case DetectStatus::kNoCandidates: return "NO_CANDIDATES";
-    case DetectStatus::kNoLine: return "NO_LINE";
-    case DetectStatus::kDeadlineMissed: return "DEADLINE_MISSED";
+    case DetectStatus::kFound:
+      return "FOUND";
+    case DetectStatus::kEmptyFrame:
+      return "EMPTY_FRAME";
+    case DetectStatus::kFrameTooLarge:
+      return "FRAME_TOO_LARGE";
+    case DetectStatus::kNoPlane:
+      return "NO_PLANE";
+    case DetectStatus::kNoCandidates:
+      return "NO_CANDIDATES";
+    case DetectStatus::kNoLine:
+      return "NO_LINE";
+    case DetectStatus::kDeadlineMissed:
+      return "DEADLINE_MISSED";
   }
   return "UNKNOWN";
 }

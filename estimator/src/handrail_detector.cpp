@@ -162,7 +162,8 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     bool removed = false;
     for (int k = 0; k < 2; ++k) {
       if (usable[k] || !candidates[k].valid) continue;
-      if (verify_candidate(cloud, candidates[k], active, ws_.line[k], &lines[k], ends[k], end_t[k])) {
+      if (verify_candidate(cloud, candidates[k], active, ws_.line[k], &lines[k], ends[k],
+                           end_t[k])) {
         usable[k] = true;
         chosen_line[k] = candidates[k];
       } else {

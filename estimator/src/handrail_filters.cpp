@@ -21,7 +21,9 @@ bool inside(const OrganizedCloud& cloud, int row, int col) {
          col < static_cast<int>(cloud.width);
 }
 
-float clamp_noise(float noise_m) { return std::isfinite(noise_m) ? std::fmin(noise_m, 0.02f) : 0.0f; }
+float clamp_noise(float noise_m) {
+  return std::isfinite(noise_m) ? std::fmin(noise_m, 0.02f) : 0.0f;
+}
 
 // Probes for the wall `offset_px` pixels away along (drow, dcol). A probe
 // that lands on an invalid pixel (a dark or flying pixel at the bar's edge)
@@ -101,10 +103,10 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
     const int yp = static_cast<int>(std::lround(scale.px_y(y_plus, z)));
     const int ym = static_cast<int>(std::lround(scale.px_y(y_minus, z)));
     const float tol = cfg.wall_tolerance_m;
-    const bool x_ok = probe_on_wall(cloud, ws, q, 0, 1, xp, tol) &&
-                      probe_on_wall(cloud, ws, q, 0, -1, xm, tol);
-    const bool y_ok = probe_on_wall(cloud, ws, q, 1, 0, yp, tol) &&
-                      probe_on_wall(cloud, ws, q, -1, 0, ym, tol);
+    const bool x_ok =
+        probe_on_wall(cloud, ws, q, 0, 1, xp, tol) && probe_on_wall(cloud, ws, q, 0, -1, xm, tol);
+    const bool y_ok =
+        probe_on_wall(cloud, ws, q, 1, 0, yp, tol) && probe_on_wall(cloud, ws, q, -1, 0, ym, tol);
     if (x_ok) ws.flags[i] |= kFlagCrossX;
     if (y_ok) ws.flags[i] |= kFlagCrossY;
     if (x_ok || y_ok) ws.cross.push(i);

@@ -33,9 +33,8 @@ Eigen::Matrix3f handrail_frame(const Eigen::Vector3f& wall_normal,
   return R;
 }
 
-bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                          const Plane& wall, const IndexList& inliers, const IndexList& silhouette,
-                          CenterLine* line) {
+bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                          const IndexList& inliers, const IndexList& silhouette, CenterLine* line) {
   const std::size_t n = inliers.size();
   if (n < 3) return false;
   const Eigen::Vector3f& normal = wall.normal;
@@ -152,13 +151,14 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     if (m == 0) continue;
     Eigen::Vector2f start(static_cast<float>(ru / m), static_cast<float>(rv / m));
     // Point the image direction outward: toward this end along the bar.
-    Eigen::Vector2f outward = start - Eigen::Vector2f(static_cast<float>(mu), static_cast<float>(mv));
+    Eigen::Vector2f outward =
+        start - Eigen::Vector2f(static_cast<float>(mu), static_cast<float>(mv));
     Eigen::Vector2f step = dir_px;
     if (outward.dot(step) < 0.0f) step = -step;
     const float z = static_cast<float>(rz / m);
-    const int max_steps = std::min(
-        400, static_cast<int>(std::ceil(std::fmax(scale.px_x(cfg.end_search_m, z),
-                                                  scale.px_y(cfg.end_search_m, z)))));
+    const int max_steps =
+        std::min(400, static_cast<int>(std::ceil(std::fmax(scale.px_x(cfg.end_search_m, z),
+                                                           scale.px_y(cfg.end_search_m, z)))));
     int invalid_run = 0;
     float t_bar = t_inner;
     for (int k = 1; k <= max_steps; ++k) {
@@ -188,7 +188,9 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
 
 HandrailState handrail_state(const bool end_seen[2]) {
   const int n = (end_seen[0] ? 1 : 0) + (end_seen[1] ? 1 : 0);
-  return n == 2 ? HandrailState::kBothEnds : n == 1 ? HandrailState::kOneEnd : HandrailState::kNoEnd;
+  return n == 2   ? HandrailState::kBothEnds
+         : n == 1 ? HandrailState::kOneEnd
+                  : HandrailState::kNoEnd;
 }
 
 void target_pose(const DetectorConfig& cfg, const Eigen::Vector3f& p_cam_center,

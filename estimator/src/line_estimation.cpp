@@ -65,14 +65,12 @@ void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorCon
   }
 }
 
-void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                          const Plane& wall, const LineModel& line, const IndexList& points,
-                          IndexList& out) {
+void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                          const LineModel& line, const IndexList& points, IndexList& out) {
   out.clear();
   if (!line.valid) return;
   for (std::int32_t i : points) {
-    if (distance_to_line(on_wall(cloud, wall, i), line.point, line.direction) <
-        cfg.line_inlier_m) {
+    if (distance_to_line(on_wall(cloud, wall, i), line.point, line.direction) < cfg.line_inlier_m) {
       out.push(i);
     }
   }
@@ -83,7 +81,8 @@ void remove_line_points(const OrganizedCloud& cloud, const DetectorConfig& cfg, 
   std::size_t kept = 0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const std::int32_t i = points[k];
-    if (distance_to_line(on_wall(cloud, wall, i), line.point, line.direction) >= cfg.line_inlier_m) {
+    if (distance_to_line(on_wall(cloud, wall, i), line.point, line.direction) >=
+        cfg.line_inlier_m) {
       points[kept++] = i;
     }
   }
@@ -102,7 +101,8 @@ Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cf
             [t_m](std::int32_t a, std::int32_t b) { return t_m[a] < t_m[b]; });
   std::size_t run_start = 0, best_start = 0, best_count = 0;
   for (std::size_t k = 1; k <= inliers.size(); ++k) {
-    const bool split = k == inliers.size() || t_m[inliers[k]] - t_m[inliers[k - 1]] > cfg.cluster_gap_m;
+    const bool split =
+        k == inliers.size() || t_m[inliers[k]] - t_m[inliers[k - 1]] > cfg.cluster_gap_m;
     if (!split) continue;
     if (k - run_start > best_count) {
       best_count = k - run_start;
@@ -120,7 +120,8 @@ Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cf
   return best;
 }
 
-bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const IndexList& inliers, float* front_m) {
+bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const IndexList& inliers,
+                           float* front_m) {
   // Histogram of the inliers' distance from the wall, 2 mm bins, lightly
   // smoothed. The bar's front face (flat on the ISS bar, the crown of a
   // round one) is the densest height; a side face seen at an angle spreads
@@ -137,7 +138,8 @@ bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const
   float best = -1.0f;
   int peak = 0;
   for (int b = 2; b < kBins - 2; ++b) {
-    const float v = hist[b - 2] + 2.0f * hist[b - 1] + 3.0f * hist[b] + 2.0f * hist[b + 1] + hist[b + 2];
+    const float v =
+        hist[b - 2] + 2.0f * hist[b - 1] + 3.0f * hist[b] + 2.0f * hist[b + 1] + hist[b + 2];
     if (v > best) {
       best = v;
       peak = b;

@@ -25,8 +25,14 @@ PixelScale estimate_pixel_scale(const OrganizedCloud& cloud, const IndexList& va
     const double u = i % static_cast<std::int32_t>(cloud.width);
     const double v = i / static_cast<std::int32_t>(cloud.width);
     n += 1;
-    sx += rx; su += u; sxx += rx * rx; sxu += rx * u;
-    sy += ry; sv += v; syy += ry * ry; syv += ry * v;
+    sx += rx;
+    su += u;
+    sxx += rx * rx;
+    sxu += rx * u;
+    sy += ry;
+    sv += v;
+    syy += ry * ry;
+    syv += ry * v;
   }
   scale.ok = fit_axis(n, sx, su, sxx, sxu, &scale.fx_px, &scale.cx_px) &&
              fit_axis(n, sy, sv, syy, syv, &scale.fy_px, &scale.cy_px);

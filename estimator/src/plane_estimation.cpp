@@ -12,8 +12,8 @@ Eigen::Vector3f point_of(const OrganizedCloud& cloud, std::int32_t i) {
   return {p.x_m, p.y_m, p.z_m};
 }
 
-bool plane_from_triple(const Eigen::Vector3f& a, const Eigen::Vector3f& b,
-                       const Eigen::Vector3f& c, Plane* plane) {
+bool plane_from_triple(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
+                       Plane* plane) {
   Eigen::Vector3f n = (b - a).cross(c - a);
   const float norm = n.norm();
   // Near-collinear triples give no plane; 1 cm^2 of spanned area at least.
@@ -62,8 +62,8 @@ bool fit_plane_least_squares(const OrganizedCloud& cloud, const std::int32_t* in
   return true;
 }
 
-PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                             Random& rng, Workspace& ws) {
+PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& cfg, Random& rng,
+                             Workspace& ws) {
   PlaneEstimate result;
   const IndexList& valid = ws.valid;
   const std::size_t n = valid.size();
@@ -82,8 +82,8 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
     }
     std::uint32_t score = 0, total = 0;
     for (std::size_t k = 0; k < n; k += step, ++total) {
-      score += std::fabs(hypothesis.signed_distance(point_of(cloud, valid[k]))) <
-               cfg.plane_inlier_m;
+      score +=
+          std::fabs(hypothesis.signed_distance(point_of(cloud, valid[k]))) < cfg.plane_inlier_m;
     }
     if (score > best_score) {
       best_score = score;

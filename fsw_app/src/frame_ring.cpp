@@ -6,9 +6,12 @@ namespace fsw_app {
 
 const char* to_string(RingStatus status) {
   switch (status) {
-    case RingStatus::kOk: return "OK";
-    case RingStatus::kEmpty: return "EMPTY";
-    case RingStatus::kFrameTooLarge: return "FRAME_TOO_LARGE";
+    case RingStatus::kOk:
+      return "OK";
+    case RingStatus::kEmpty:
+      return "EMPTY";
+    case RingStatus::kFrameTooLarge:
+      return "FRAME_TOO_LARGE";
   }
   return "UNKNOWN";
 }

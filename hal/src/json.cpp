@@ -97,15 +97,30 @@ class Parser {
       if (pos_ >= s_.size()) break;
       const char e = s_[pos_++];
       switch (e) {
-        case '"': case '\\': case '/': out->push_back(e); break;
-        case 'n': out->push_back('\n'); break;
-        case 't': out->push_back('\t'); break;
-        case 'r': out->push_back('\r'); break;
-        case 'b': out->push_back('\b'); break;
-        case 'f': out->push_back('\f'); break;
+        case '"':
+        case '\\':
+        case '/':
+          out->push_back(e);
+          break;
+        case 'n':
+          out->push_back('\n');
+          break;
+        case 't':
+          out->push_back('\t');
+          break;
+        case 'r':
+          out->push_back('\r');
+          break;
+        case 'b':
+          out->push_back('\b');
+          break;
+        case 'f':
+          out->push_back('\f');
+          break;
         case 'u': {
           if (pos_ + 4 > s_.size()) return fail("short \\u escape");
-          const unsigned code = static_cast<unsigned>(std::strtoul(std::string(s_.substr(pos_, 4)).c_str(), nullptr, 16));
+          const unsigned code = static_cast<unsigned>(
+              std::strtoul(std::string(s_.substr(pos_, 4)).c_str(), nullptr, 16));
           pos_ += 4;
           // Enough for configuration text: ASCII passes, the rest as UTF-8.
           if (code < 0x80) {
@@ -120,7 +135,8 @@ class Parser {
           }
           break;
         }
-        default: return fail(std::string("unknown escape '\\") + e + "'");
+        default:
+          return fail(std::string("unknown escape '\\") + e + "'");
       }
     }
     return fail("unterminated string");
@@ -169,7 +185,8 @@ class Parser {
         if (m.first == key) return fail("duplicate key \"" + key + "\"");
       }
       skip_space();
-      if (pos_ >= s_.size() || s_[pos_] != ':') return fail("expected ':' after key \"" + key + "\"");
+      if (pos_ >= s_.size() || s_[pos_] != ':')
+        return fail("expected ':' after key \"" + key + "\"");
       ++pos_;
       skip_space();
       out->members.emplace_back(key, JsonValue{});
@@ -205,12 +222,18 @@ const JsonValue* JsonValue::find(std::string_view key) const {
 
 const char* to_string(JsonValue::Type type) {
   switch (type) {
-    case JsonValue::Type::kNull: return "null";
-    case JsonValue::Type::kBool: return "boolean";
-    case JsonValue::Type::kNumber: return "number";
-    case JsonValue::Type::kString: return "string";
-    case JsonValue::Type::kArray: return "array";
-    case JsonValue::Type::kObject: return "object";
+    case JsonValue::Type::kNull:
+      return "null";
+    case JsonValue::Type::kBool:
+      return "boolean";
+    case JsonValue::Type::kNumber:
+      return "number";
+    case JsonValue::Type::kString:
+      return "string";
+    case JsonValue::Type::kArray:
+      return "array";
+    case JsonValue::Type::kObject:
+      return "object";
   }
   return "unknown";
 }

@@ -46,18 +46,54 @@ bool parse_uint(const std::string& s, std::uint64_t* out) {
 double read_binary_value(const unsigned char* p, const Field& f) {
   switch (f.type) {
     case 'F':
-      if (f.size == 4) { float v; std::memcpy(&v, p, 4); return v; }
-      { double v; std::memcpy(&v, p, 8); return v; }
+      if (f.size == 4) {
+        float v;
+        std::memcpy(&v, p, 4);
+        return v;
+      }
+      {
+        double v;
+        std::memcpy(&v, p, 8);
+        return v;
+      }
     case 'U':
       if (f.size == 1) return *p;
-      if (f.size == 2) { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
-      if (f.size == 4) { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-      { std::uint64_t v; std::memcpy(&v, p, 8); return static_cast<double>(v); }
+      if (f.size == 2) {
+        std::uint16_t v;
+        std::memcpy(&v, p, 2);
+        return v;
+      }
+      if (f.size == 4) {
+        std::uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+      }
+      {
+        std::uint64_t v;
+        std::memcpy(&v, p, 8);
+        return static_cast<double>(v);
+      }
     default:
-      if (f.size == 1) { std::int8_t v; std::memcpy(&v, p, 1); return v; }
-      if (f.size == 2) { std::int16_t v; std::memcpy(&v, p, 2); return v; }
-      if (f.size == 4) { std::int32_t v; std::memcpy(&v, p, 4); return v; }
-      { std::int64_t v; std::memcpy(&v, p, 8); return static_cast<double>(v); }
+      if (f.size == 1) {
+        std::int8_t v;
+        std::memcpy(&v, p, 1);
+        return v;
+      }
+      if (f.size == 2) {
+        std::int16_t v;
+        std::memcpy(&v, p, 2);
+        return v;
+      }
+      if (f.size == 4) {
+        std::int32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+      }
+      {
+        std::int64_t v;
+        std::memcpy(&v, p, 8);
+        return static_cast<double>(v);
+      }
   }
 }
 
@@ -68,8 +104,8 @@ bool valid_type(char type, int size) {
 }
 
 // Sets a point from the values of the known fields (NaN where absent).
-void assign_point(DepthPoint* p, double x, double y, double z, double gray, double noise, double conf,
-                  bool has_conf) {
+void assign_point(DepthPoint* p, double x, double y, double z, double gray, double noise,
+                  double conf, bool has_conf) {
   const bool finite = std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
   const bool valid = finite && z > 0.0 && (!has_conf || conf > 0.0);
   if (!valid) {
@@ -81,12 +117,14 @@ void assign_point(DepthPoint* p, double x, double y, double z, double gray, doub
     p->noise_m = std::isfinite(noise) && noise > 0.0 ? static_cast<float>(noise) : 0.0f;
     p->confidence = has_conf ? static_cast<std::uint8_t>(std::fmin(conf, 255.0)) : 255;
   }
-  p->gray_value = std::isfinite(gray) && gray > 0.0 ? static_cast<std::uint16_t>(std::fmin(gray, 65535.0)) : 0;
+  p->gray_value =
+      std::isfinite(gray) && gray > 0.0 ? static_cast<std::uint16_t>(std::fmin(gray, 65535.0)) : 0;
 }
 
 }  // namespace
 
-bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out, std::string* error) {
+bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
+               std::string* error) {
   std::vector<Field> fields;
   std::uint64_t width = 0, height = 0, points = 0;
   bool have_points = false, have_width = false, have_height = false;
@@ -114,7 +152,8 @@ bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
     } else if (key == "SIZE") {
       for (std::size_t k = 1; k < w.size(); ++k) {
         std::uint64_t v;
-        if (!parse_uint(w[k], &v) || v > 8) return fail(error, path, where + ": bad size '" + w[k] + "'");
+        if (!parse_uint(w[k], &v) || v > 8)
+          return fail(error, path, where + ": bad size '" + w[k] + "'");
         sizes.push_back(static_cast<int>(v));
       }
     } else if (key == "TYPE") {
@@ -125,15 +164,26 @@ bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
     } else if (key == "COUNT") {
       for (std::size_t k = 1; k < w.size(); ++k) {
         std::uint64_t v;
-        if (!parse_uint(w[k], &v) || v == 0 || v > 1024) return fail(error, path, where + ": bad count '" + w[k] + "'");
+        if (!parse_uint(w[k], &v) || v == 0 || v > 1024)
+          return fail(error, path, where + ": bad count '" + w[k] + "'");
         counts.push_back(static_cast<int>(v));
       }
     } else if (key == "WIDTH" || key == "HEIGHT" || key == "POINTS") {
       std::uint64_t v;
-      if (w.size() != 2 || !parse_uint(w[1], &v)) return fail(error, path, where + ": expected one non-negative integer");
-      if (key == "WIDTH") { width = v; have_width = true; }
-      if (key == "HEIGHT") { height = v; have_height = true; }
-      if (key == "POINTS") { points = v; have_points = true; }
+      if (w.size() != 2 || !parse_uint(w[1], &v))
+        return fail(error, path, where + ": expected one non-negative integer");
+      if (key == "WIDTH") {
+        width = v;
+        have_width = true;
+      }
+      if (key == "HEIGHT") {
+        height = v;
+        have_height = true;
+      }
+      if (key == "POINTS") {
+        points = v;
+        have_points = true;
+      }
     } else if (key == "VIEWPOINT") {
       if (w.size() != 8) return fail(error, path, where + ": expected 7 numbers");
     } else if (key == "DATA") {
@@ -144,13 +194,31 @@ bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
     }
   }
   if (fields.empty()) return fail(error, path, "no FIELDS line in the header");
-  if (sizes.size() != fields.size()) return fail(error, path, "SIZE has " + std::to_string(sizes.size()) + " entries for " + std::to_string(fields.size()) + " fields");
-  if (types.size() != fields.size()) return fail(error, path, "TYPE has " + std::to_string(types.size()) + " entries for " + std::to_string(fields.size()) + " fields");
-  if (!counts.empty() && counts.size() != fields.size()) return fail(error, path, "COUNT has " + std::to_string(counts.size()) + " entries for " + std::to_string(fields.size()) + " fields");
+  if (sizes.size() != fields.size())
+    return fail(error, path,
+                "SIZE has " + std::to_string(sizes.size()) + " entries for " +
+                    std::to_string(fields.size()) + " fields");
+  if (types.size() != fields.size())
+    return fail(error, path,
+                "TYPE has " + std::to_string(types.size()) + " entries for " +
+                    std::to_string(fields.size()) + " fields");
+  if (!counts.empty() && counts.size() != fields.size())
+    return fail(error, path,
+                "COUNT has " + std::to_string(counts.size()) + " entries for " +
+                    std::to_string(fields.size()) + " fields");
   if (!have_width || !have_height) return fail(error, path, "WIDTH and HEIGHT are required");
-  if (height <= 1) return fail(error, path, "not an organized cloud (HEIGHT " + std::to_string(height) + "); depth frames are organized");
-  if (width == 0 || width > kMaxSide || height > kMaxSide) return fail(error, path, "WIDTH x HEIGHT " + std::to_string(width) + " x " + std::to_string(height) + " is out of range");
-  if (have_points && points != width * height) return fail(error, path, "POINTS " + std::to_string(points) + " does not equal WIDTH x HEIGHT " + std::to_string(width * height));
+  if (height <= 1)
+    return fail(error, path,
+                "not an organized cloud (HEIGHT " + std::to_string(height) +
+                    "); depth frames are organized");
+  if (width == 0 || width > kMaxSide || height > kMaxSide)
+    return fail(error, path,
+                "WIDTH x HEIGHT " + std::to_string(width) + " x " + std::to_string(height) +
+                    " is out of range");
+  if (have_points && points != width * height)
+    return fail(error, path,
+                "POINTS " + std::to_string(points) + " does not equal WIDTH x HEIGHT " +
+                    std::to_string(width * height));
 
   std::size_t record = 0;
   int ix = -1, iy = -1, iz = -1, igray = -1, inoise = -1, iconf = -1;
@@ -159,16 +227,25 @@ bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
     f.size = sizes[k];
     f.type = types[k];
     f.count = counts.empty() ? 1 : counts[k];
-    if (!valid_type(f.type, f.size)) return fail(error, path, "field '" + f.name + "' has unsupported TYPE " + f.type + " with SIZE " + std::to_string(f.size));
+    if (!valid_type(f.type, f.size))
+      return fail(error, path,
+                  "field '" + f.name + "' has unsupported TYPE " + f.type + " with SIZE " +
+                      std::to_string(f.size));
     f.offset = record;
     record += static_cast<std::size_t>(f.size) * static_cast<std::size_t>(f.count);
     const int i = static_cast<int>(k);
-    if (f.name == "x") ix = i;
-    else if (f.name == "y") iy = i;
-    else if (f.name == "z") iz = i;
-    else if (f.name == "intensity" || f.name == "gray" || f.name == "grayValue") igray = i;
-    else if (f.name == "noise") inoise = i;
-    else if (f.name == "confidence" || f.name == "depthConfidence") iconf = i;
+    if (f.name == "x")
+      ix = i;
+    else if (f.name == "y")
+      iy = i;
+    else if (f.name == "z")
+      iz = i;
+    else if (f.name == "intensity" || f.name == "gray" || f.name == "grayValue")
+      igray = i;
+    else if (f.name == "noise")
+      inoise = i;
+    else if (f.name == "confidence" || f.name == "depthConfidence")
+      iconf = i;
   }
   if (ix < 0 || iy < 0 || iz < 0) return fail(error, path, "FIELDS must include x, y and z");
 
@@ -180,17 +257,26 @@ bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
 
   if (data_kind == "binary") {
     if (bytes.size() - std::min(pos, bytes.size()) < n * record) {
-      return fail(error, path, "binary data truncated: " + std::to_string(bytes.size() - std::min(pos, bytes.size())) + " bytes for " + std::to_string(n) + " points of " + std::to_string(record) + " bytes");
+      return fail(error, path,
+                  "binary data truncated: " +
+                      std::to_string(bytes.size() - std::min(pos, bytes.size())) + " bytes for " +
+                      std::to_string(n) + " points of " + std::to_string(record) + " bytes");
     }
     const unsigned char* base = reinterpret_cast<const unsigned char*>(bytes.data()) + pos;
     for (std::size_t i = 0; i < n; ++i) {
       const unsigned char* r = base + i * record;
-      auto get = [&](int k) { return k < 0 ? nan : read_binary_value(r + fields[static_cast<std::size_t>(k)].offset, fields[static_cast<std::size_t>(k)]); };
-      assign_point(&out->points[i], get(ix), get(iy), get(iz), get(igray), get(inoise), get(iconf), iconf >= 0);
+      auto get = [&](int k) {
+        return k < 0 ? nan
+                     : read_binary_value(r + fields[static_cast<std::size_t>(k)].offset,
+                                         fields[static_cast<std::size_t>(k)]);
+      };
+      assign_point(&out->points[i], get(ix), get(iy), get(iz), get(igray), get(inoise), get(iconf),
+                   iconf >= 0);
     }
     return true;
   }
-  if (data_kind != "ascii") return fail(error, path, "DATA " + data_kind + " is not supported (ascii or binary)");
+  if (data_kind != "ascii")
+    return fail(error, path, "DATA " + data_kind + " is not supported (ascii or binary)");
 
   std::size_t columns = 0;
   std::vector<std::size_t> first_column(fields.size());
@@ -205,7 +291,10 @@ bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
       if (bytes[pos] == '\n') ++line_no;
       ++pos;
     }
-    if (pos >= bytes.size()) return fail(error, path, "ascii data truncated: " + std::to_string(i) + " of " + std::to_string(n) + " points");
+    if (pos >= bytes.size())
+      return fail(
+          error, path,
+          "ascii data truncated: " + std::to_string(i) + " of " + std::to_string(n) + " points");
     std::size_t eol = bytes.find('\n', pos);
     if (eol == std::string::npos) eol = bytes.size();
     ++line_no;
@@ -216,13 +305,18 @@ bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
       char* next = nullptr;
       const double v = std::strtod(c, &next);
       if (next == c || next > end_of_line) {
-        return fail(error, path, "line " + std::to_string(line_no) + ": expected " + std::to_string(columns) + " numbers, found " + std::to_string(k));
+        return fail(error, path,
+                    "line " + std::to_string(line_no) + ": expected " + std::to_string(columns) +
+                        " numbers, found " + std::to_string(k));
       }
       values[k] = v;
       c = next;
     }
-    auto get = [&](int k) { return k < 0 ? nan : values[first_column[static_cast<std::size_t>(k)]]; };
-    assign_point(&out->points[i], get(ix), get(iy), get(iz), get(igray), get(inoise), get(iconf), iconf >= 0);
+    auto get = [&](int k) {
+      return k < 0 ? nan : values[first_column[static_cast<std::size_t>(k)]];
+    };
+    assign_point(&out->points[i], get(ix), get(iy), get(iz), get(igray), get(inoise), get(iconf),
+                 iconf >= 0);
     pos = eol + 1;
   }
   return true;
@@ -263,16 +357,19 @@ std::string encode_pcd(const DepthFrame& frame, PcdEncoding encoding) {
     const DepthPoint& p = frame.points[i];
     if (is_valid(p)) {
       std::snprintf(line, sizeof line, "%.9g %.9g %.9g %u %.9g %u\n", p.x_m, p.y_m, p.z_m,
-                    static_cast<unsigned>(p.gray_value), p.noise_m, static_cast<unsigned>(p.confidence));
+                    static_cast<unsigned>(p.gray_value), p.noise_m,
+                    static_cast<unsigned>(p.confidence));
     } else {
-      std::snprintf(line, sizeof line, "nan nan nan %u nan 0\n", static_cast<unsigned>(p.gray_value));
+      std::snprintf(line, sizeof line, "nan nan nan %u nan 0\n",
+                    static_cast<unsigned>(p.gray_value));
     }
     s += line;
   }
   return s;
 }
 
-bool write_pcd(const std::string& path, const DepthFrame& frame, PcdEncoding encoding, std::string* error) {
+bool write_pcd(const std::string& path, const DepthFrame& frame, PcdEncoding encoding,
+               std::string* error) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) return fail(error, path, "cannot create file");
   const std::string bytes = encode_pcd(frame, encoding);

@@ -16,7 +16,8 @@ bool centre_point_visible(const Scene& scene, const CameraIntrinsics& cam,
   const Eigen::Vector3d p_cam = T_world_cam.inverse() * p_world;
   Eigen::Vector2d px;
   if (!project(cam, p_cam, &px)) return false;
-  if (px.x() < 0.0 || px.y() < 0.0 || px.x() > cam.width - 1.0 || px.y() > cam.height - 1.0) return false;
+  if (px.x() < 0.0 || px.y() < 0.0 || px.x() > cam.width - 1.0 || px.y() > cam.height - 1.0)
+    return false;
   const Eigen::Vector3d origin = T_world_cam.translation();
   const Eigen::Vector3d dir = (p_world - origin).normalized();
   Hit hit;
@@ -55,7 +56,8 @@ FrameTruth compute_truth(const Scene& scene, const CameraIntrinsics& cam,
       t.ends_cam[e] = T_cam_world * h.end_point(e);
       // Pull the probe just inside the bar so that its own end cap does not
       // hide it.
-      const Eigen::Vector3d inside = h.end_point(e) - (e == 0 ? -0.005 : 0.005) * h.axis.normalized();
+      const Eigen::Vector3d inside =
+          h.end_point(e) - (e == 0 ? -0.005 : 0.005) * h.axis.normalized();
       t.end_in_view[e] = centre_point_visible(scene, cam, T_world_cam, id, inside);
     }
     t.center_cam = 0.5 * (t.ends_cam[0] + t.ends_cam[1]);
@@ -74,13 +76,15 @@ std::string truth_to_json(const FrameTruth& truth, const std::string& frame_file
   char buf[160];
   s += ",\"camera_position\":";
   append_vec(&s, truth.T_world_cam.translation());
-  std::snprintf(buf, sizeof buf, ",\"camera_quaternion_wxyz\":[%.8f,%.8f,%.8f,%.8f]", q.w(), q.x(), q.y(), q.z());
+  std::snprintf(buf, sizeof buf, ",\"camera_quaternion_wxyz\":[%.8f,%.8f,%.8f,%.8f]", q.w(), q.x(),
+                q.y(), q.z());
   s += buf;
   s += ",\"handrails\":[";
   for (std::size_t k = 0; k < truth.handrails.size(); ++k) {
     const HandrailTruth& h = truth.handrails[k];
     if (k) s += ",";
-    s += "{\"index\":" + std::to_string(h.index) + ",\"kind\":\"" + to_string(h.kind) + "\",\"ends\":[";
+    s += "{\"index\":" + std::to_string(h.index) + ",\"kind\":\"" + to_string(h.kind) +
+         "\",\"ends\":[";
     append_vec(&s, h.ends_cam[0]);
     s += ",";
     append_vec(&s, h.ends_cam[1]);
@@ -90,8 +94,9 @@ std::string truth_to_json(const FrameTruth& truth, const std::string& frame_file
     append_vec(&s, h.axis_cam);
     s += ",\"normal\":";
     append_vec(&s, h.normal_cam);
-    std::snprintf(buf, sizeof buf, ",\"length\":%.4f,\"visible_fraction\":%.3f,\"end_in_view\":[%s,%s]}",
-                  h.length_m, h.visible_fraction, h.end_in_view[0] ? "true" : "false",
+    std::snprintf(buf, sizeof buf,
+                  ",\"length\":%.4f,\"visible_fraction\":%.3f,\"end_in_view\":[%s,%s]}", h.length_m,
+                  h.visible_fraction, h.end_in_view[0] ? "true" : "false",
                   h.end_in_view[1] ? "true" : "false");
     s += buf;
   }

@@ -26,7 +26,8 @@ class Reader {
     return false;
   }
 
-  const JsonValue* member(const JsonValue& obj, const char* key, JsonValue::Type type, bool required) {
+  const JsonValue* member(const JsonValue& obj, const char* key, JsonValue::Type type,
+                          bool required) {
     const JsonValue* v = obj.find(key);
     if (!v) {
       if (required) fail(obj, std::string("missing \"") + key + "\"");
@@ -40,7 +41,8 @@ class Reader {
     return v;
   }
 
-  bool number(const JsonValue& obj, const char* key, double lo, double hi, double* out, bool required) {
+  bool number(const JsonValue& obj, const char* key, double lo, double hi, double* out,
+              bool required) {
     const JsonValue* v = member(obj, key, JsonValue::Type::kNumber, required);
     if (!v) return !required && ok();
     if (!(v->number >= lo && v->number <= hi)) {
@@ -52,12 +54,14 @@ class Reader {
     return true;
   }
 
-  bool vec3(const JsonValue& obj, const char* key, Eigen::Vector3d* out, bool required, bool unit = false) {
+  bool vec3(const JsonValue& obj, const char* key, Eigen::Vector3d* out, bool required,
+            bool unit = false) {
     const JsonValue* v = member(obj, key, JsonValue::Type::kArray, required);
     if (!v) return !required && ok();
     if (v->items.size() != 3) return fail(*v, std::string("\"") + key + "\" must have 3 numbers");
     for (int k = 0; k < 3; ++k) {
-      if (!v->items[k].is_number()) return fail(v->items[k], std::string("\"") + key + "\" must hold numbers");
+      if (!v->items[k].is_number())
+        return fail(v->items[k], std::string("\"") + key + "\" must hold numbers");
       (*out)[k] = v->items[k].number;
     }
     if (unit) {
@@ -73,7 +77,8 @@ class Reader {
     return ok();
   }
 
-  void unknown_keys(const JsonValue& obj, std::initializer_list<const char*> known, const char* where) {
+  void unknown_keys(const JsonValue& obj, std::initializer_list<const char*> known,
+                    const char* where) {
     for (const auto& m : obj.members) {
       bool found = false;
       for (const char* k : known) found = found || m.first == k;
@@ -94,10 +99,11 @@ Eigen::Matrix3d rotation_rpy_deg(const Eigen::Vector3d& rpy) {
 }
 
 void read_sensor(Reader& r, const JsonValue& s, ToFSettings* t) {
-  r.unknown_keys(s, {"noise", "flying_pixels", "flying_filter", "invalid_pixels", "multipath",
-                     "noise_ref_m", "flying_probability", "multipath_gain_m", "amplitude_min",
-                     "range_min_m", "range_max_m"},
-                 "sensor");
+  r.unknown_keys(
+      s,
+      {"noise", "flying_pixels", "flying_filter", "invalid_pixels", "multipath", "noise_ref_m",
+       "flying_probability", "multipath_gain_m", "amplitude_min", "range_min_m", "range_max_m"},
+      "sensor");
   r.flag(s, "noise", &t->noise);
   r.flag(s, "flying_pixels", &t->flying_pixels);
   r.flag(s, "flying_filter", &t->flying_filter);
@@ -116,7 +122,10 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
   if (const JsonValue* walls = r.member(sc, "walls", JsonValue::Type::kArray, true)) {
     if (walls->items.empty()) r.fail(*walls, "\"walls\" must hold at least one wall");
     for (const JsonValue& w : walls->items) {
-      if (!w.is_object()) { r.fail(w, "a wall must be an object"); return; }
+      if (!w.is_object()) {
+        r.fail(w, "a wall must be an object");
+        return;
+      }
       r.unknown_keys(w, {"center", "normal", "up", "size", "reflectivity"}, "a wall");
       Eigen::Vector3d c, n, up(0, 0, 1);
       double refl = 0.6;
@@ -131,13 +140,19 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
         r.fail(*size, "\"size\" must be [width_m, height_m], both positive");
         return;
       }
-      if (std::fabs(up.dot(n)) > 0.99) { r.fail(w, "\"up\" must not be parallel to \"normal\""); return; }
+      if (std::fabs(up.dot(n)) > 0.99) {
+        r.fail(w, "\"up\" must not be parallel to \"normal\"");
+        return;
+      }
       scene->add_wall(c, n, up, size->items[0].number, size->items[1].number, refl);
     }
   }
   if (const JsonValue* rails = r.member(sc, "handrails", JsonValue::Type::kArray, false)) {
     for (const JsonValue& h : rails->items) {
-      if (!h.is_object()) { r.fail(h, "a handrail must be an object"); return; }
+      if (!h.is_object()) {
+        r.fail(h, "a handrail must be an object");
+        return;
+      }
       r.unknown_keys(h, {"kind", "foot", "normal", "axis", "length", "reflectivity"}, "a handrail");
       Handrail rail{};
       const JsonValue* kind = r.member(h, "kind", JsonValue::Type::kString, true);
@@ -157,7 +172,10 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
       r.number(h, "length", 0.1, 2.0, &rail.bar_length_m, true);
       r.number(h, "reflectivity", 0.01, 1.0, &rail.reflectivity, false);
       if (!r.ok()) return;
-      if (std::fabs(rail.axis.dot(rail.normal)) > 1e-3) { r.fail(h, "\"axis\" must be perpendicular to \"normal\""); return; }
+      if (std::fabs(rail.axis.dot(rail.normal)) > 1e-3) {
+        r.fail(h, "\"axis\" must be perpendicular to \"normal\"");
+        return;
+      }
       scene->add_handrail(rail);
     }
   }
@@ -165,18 +183,24 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
     const JsonValue* list = r.member(sc, key, JsonValue::Type::kArray, false);
     if (!list) continue;
     for (const JsonValue& c : list->items) {
-      if (!c.is_object()) { r.fail(c, "a cable must be an object"); return; }
+      if (!c.is_object()) {
+        r.fail(c, "a cable must be an object");
+        return;
+      }
       r.unknown_keys(c, {"points", "diameter", "reflectivity"}, key);
       double diameter = 0.0, refl = 0.3;
       r.number(c, "diameter", 0.002, 0.2, &diameter, true);
       r.number(c, "reflectivity", 0.01, 1.0, &refl, false);
       const JsonValue* pts = r.member(c, "points", JsonValue::Type::kArray, true);
       if (!r.ok()) return;
-      if (pts->items.size() < 2) { r.fail(*pts, "\"points\" needs at least 2 points"); return; }
+      if (pts->items.size() < 2) {
+        r.fail(*pts, "\"points\" needs at least 2 points");
+        return;
+      }
       std::vector<Eigen::Vector3d> points;
       for (const JsonValue& p : pts->items) {
-        if (!p.is_array() || p.items.size() != 3 || !p.items[0].is_number() || !p.items[1].is_number() ||
-            !p.items[2].is_number()) {
+        if (!p.is_array() || p.items.size() != 3 || !p.items[0].is_number() ||
+            !p.items[1].is_number() || !p.items[2].is_number()) {
           r.fail(p, "each point must be [x, y, z]");
           return;
         }
@@ -187,7 +211,10 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
   }
   if (const JsonValue* boxes = r.member(sc, "boxes", JsonValue::Type::kArray, false)) {
     for (const JsonValue& b : boxes->items) {
-      if (!b.is_object()) { r.fail(b, "a box must be an object"); return; }
+      if (!b.is_object()) {
+        r.fail(b, "a box must be an object");
+        return;
+      }
       r.unknown_keys(b, {"center", "size", "rpy_deg", "reflectivity"}, "a box");
       Eigen::Vector3d c, size, rpy = Eigen::Vector3d::Zero();
       double refl = 0.5;
@@ -196,7 +223,10 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
       r.vec3(b, "rpy_deg", &rpy, false);
       r.number(b, "reflectivity", 0.01, 1.0, &refl, false);
       if (!r.ok()) return;
-      if (size.minCoeff() <= 0.0) { r.fail(b, "box \"size\" must be positive"); return; }
+      if (size.minCoeff() <= 0.0) {
+        r.fail(b, "box \"size\" must be positive");
+        return;
+      }
       scene->add_box(c, rotation_rpy_deg(rpy), size, refl);
     }
   }
@@ -211,16 +241,23 @@ bool read_pose(Reader& r, const JsonValue& p, Eigen::Vector3d* pos, Eigen::Vecto
   r.vec3(p, "facing", facing, false, true);
   r.vec3(p, "up", up, false, true);
   r.vec3(p, "rpy_deg", rpy, false);
-  if (r.ok() && std::fabs(facing->dot(*up)) > 0.99) return r.fail(p, "\"up\" must not be parallel to \"facing\"");
+  if (r.ok() && std::fabs(facing->dot(*up)) > 0.99)
+    return r.fail(p, "\"up\" must not be parallel to \"facing\"");
   return r.ok();
 }
 
 void read_poses(Reader& r, const JsonValue& root, Scenario* s) {
   const JsonValue* poses = r.member(root, "poses", JsonValue::Type::kArray, true);
   if (!poses) return;
-  if (poses->items.empty()) { r.fail(*poses, "\"poses\" must hold at least one pose"); return; }
+  if (poses->items.empty()) {
+    r.fail(*poses, "\"poses\" must hold at least one pose");
+    return;
+  }
   for (const JsonValue& p : poses->items) {
-    if (!p.is_object()) { r.fail(p, "a pose must be an object"); return; }
+    if (!p.is_object()) {
+      r.fail(p, "a pose must be an object");
+      return;
+    }
     r.unknown_keys(p, {"label", "position", "facing", "up", "rpy_deg", "frames", "to"}, "a pose");
     double frames = 1;
     r.number(p, "frames", 1, kMaxFrames, &frames, false);
@@ -243,7 +280,8 @@ void read_poses(Reader& r, const JsonValue& root, Scenario* s) {
     }
     for (int k = 0; k < n; ++k) {
       const double f = n > 1 ? static_cast<double>(k) / (n - 1) : 0.0;
-      s->T_world_cam.push_back(camera_pose(pos + f * (pos1 - pos), facing, up, rpy + f * (rpy1 - rpy)));
+      s->T_world_cam.push_back(
+          camera_pose(pos + f * (pos1 - pos), facing, up, rpy + f * (rpy1 - rpy)));
       s->pose_labels.push_back(label);
     }
   }
@@ -270,7 +308,8 @@ Eigen::Isometry3d camera_pose(const Eigen::Vector3d& position, const Eigen::Vect
   return T;
 }
 
-bool parse_scenario(const std::string& text, const std::string& path, Scenario* out, std::string* error) {
+bool parse_scenario(const std::string& text, const std::string& path, Scenario* out,
+                    std::string* error) {
   *out = Scenario{};
   JsonValue root;
   std::string json_error;
@@ -283,16 +322,23 @@ bool parse_scenario(const std::string& text, const std::string& path, Scenario* 
     *error = path + ":" + std::to_string(root.line) + ": a scenario must be a JSON object";
     return false;
   }
-  r.unknown_keys(root, {"name", "description", "seed", "frame_rate_hz", "gripper_angle_deg", "sensor", "scene", "poses"}, "the scenario");
-  if (const JsonValue* name = r.member(root, "name", JsonValue::Type::kString, true)) out->name = name->text;
-  if (const JsonValue* d = r.member(root, "description", JsonValue::Type::kString, false)) out->description = d->text;
+  r.unknown_keys(root,
+                 {"name", "description", "seed", "frame_rate_hz", "gripper_angle_deg", "sensor",
+                  "scene", "poses"},
+                 "the scenario");
+  if (const JsonValue* name = r.member(root, "name", JsonValue::Type::kString, true))
+    out->name = name->text;
+  if (const JsonValue* d = r.member(root, "description", JsonValue::Type::kString, false))
+    out->description = d->text;
   double seed = 1;
   r.number(root, "seed", 0, 9007199254740991.0, &seed, false);
   out->seed = static_cast<std::uint64_t>(seed);
   r.number(root, "frame_rate_hz", 0.1, 1000.0, &out->frame_rate_hz, false);
   r.number(root, "gripper_angle_deg", 0.0, 90.0, &out->gripper_angle_deg, false);
-  if (const JsonValue* s = r.member(root, "sensor", JsonValue::Type::kObject, false)) read_sensor(r, *s, &out->sensor);
-  if (const JsonValue* sc = r.member(root, "scene", JsonValue::Type::kObject, true)) read_scene(r, *sc, &out->scene);
+  if (const JsonValue* s = r.member(root, "sensor", JsonValue::Type::kObject, false))
+    read_sensor(r, *s, &out->sensor);
+  if (const JsonValue* sc = r.member(root, "scene", JsonValue::Type::kObject, true))
+    read_scene(r, *sc, &out->scene);
   if (r.ok()) read_poses(r, root, out);
   if (!r.ok()) {
     *error = r.error();

@@ -40,7 +40,8 @@ bool hit_cylinder(const CylinderSurface& c, const Eigen::Vector3d& o, const Eige
   const Eigen::Vector3d oc = o - c.center;
   const double oa = oc.dot(c.axis), da = d.dot(c.axis);
   const Eigen::Vector3d op = oc - oa * c.axis, dp = d - da * c.axis;
-  const double a = dp.squaredNorm(), b = 2.0 * op.dot(dp), k = op.squaredNorm() - c.radius * c.radius;
+  const double a = dp.squaredNorm(), b = 2.0 * op.dot(dp),
+               k = op.squaredNorm() - c.radius * c.radius;
   const double before = *t;
   if (a > kParallelEps) {
     const double disc = b * b - 4.0 * a * k;
@@ -103,8 +104,8 @@ bool inside_rounded_rect(double x, double y, double hx, double hy, double rc) {
   return dx * dx + dy * dy <= rc * rc;
 }
 
-bool hit_rounded_bar(const RoundedBarSurface& b, const Eigen::Vector3d& o,
-                     const Eigen::Vector3d& d, double t_min, double* t, Eigen::Vector3d* n) {
+bool hit_rounded_bar(const RoundedBarSurface& b, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                     double t_min, double* t, Eigen::Vector3d* n) {
   const Eigen::Vector3d e_w = b.axis.cross(b.depth_dir);
   const Eigen::Vector3d oc = o - b.center;
   const double ox = oc.dot(b.depth_dir), oy = oc.dot(e_w), oa = oc.dot(b.axis);
@@ -116,7 +117,8 @@ bool hit_rounded_bar(const RoundedBarSurface& b, const Eigen::Vector3d& o,
   for (double sx : {-1.0, 1.0}) {
     if (std::fabs(dx) > kParallelEps) {
       const double s = (sx * hx - ox) / dx;
-      if (std::fabs(oy + s * dy) <= hy - rc && axial_ok(s)) keep_nearest(s, sx * b.depth_dir, t_min, t, n);
+      if (std::fabs(oy + s * dy) <= hy - rc && axial_ok(s))
+        keep_nearest(s, sx * b.depth_dir, t_min, t, n);
     }
     if (std::fabs(dy) > kParallelEps) {
       const double s = (sx * hy - oy) / dy;
@@ -146,13 +148,15 @@ bool hit_rounded_bar(const RoundedBarSurface& b, const Eigen::Vector3d& o,
   if (std::fabs(da) > kParallelEps) {
     for (double sa : {-1.0, 1.0}) {
       const double s = (sa * hl - oa) / da;
-      if (inside_rounded_rect(ox + s * dx, oy + s * dy, hx, hy, rc)) keep_nearest(s, sa * b.axis, t_min, t, n);
+      if (inside_rounded_rect(ox + s * dx, oy + s * dy, hx, hy, rc))
+        keep_nearest(s, sa * b.axis, t_min, t, n);
     }
   }
   return *t < before;
 }
 
-bool misses_bound(const Surface& s, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_max) {
+bool misses_bound(const Surface& s, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                  double t_max) {
   const Eigen::Vector3d oc = s.bound_center - o;
   const double along = oc.dot(d);
   if (along < -s.bound_radius || along - s.bound_radius > t_max) return true;
@@ -171,8 +175,8 @@ Surface make_cylinder(const Eigen::Vector3d& center, const Eigen::Vector3d& axis
   return s;
 }
 
-Surface make_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R, const Eigen::Vector3d& half,
-                 std::int32_t id, double reflectivity) {
+Surface make_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
+                 const Eigen::Vector3d& half, std::int32_t id, double reflectivity) {
   Surface s{};
   s.kind = SurfaceKind::kBox;
   s.object_id = id;
@@ -199,7 +203,8 @@ Eigen::Vector3d Handrail::end_point(int end) const {
 }
 
 void Scene::add_wall(const Eigen::Vector3d& center, const Eigen::Vector3d& normal,
-                     const Eigen::Vector3d& up, double width_m, double height_m, double reflectivity) {
+                     const Eigen::Vector3d& up, double width_m, double height_m,
+                     double reflectivity) {
   Surface s{};
   s.kind = SurfaceKind::kRect;
   s.object_id = -1;
@@ -221,8 +226,10 @@ void Scene::add_handrail(const Handrail& h) {
   if (h.kind == HandrailKind::kPaperRound) {
     surfaces.push_back(make_cylinder(bar_center, a, kRoundRadius, half, id, h.reflectivity));
     for (double sign : {-1.0, 1.0}) {
-      const Eigen::Vector3d leg = h.foot_center + sign * (half - kRoundRadius) * a + 0.5 * kRoundLegHeight * n;
-      surfaces.push_back(make_cylinder(leg, n, kRoundRadius, 0.5 * kRoundLegHeight, id, h.reflectivity));
+      const Eigen::Vector3d leg =
+          h.foot_center + sign * (half - kRoundRadius) * a + 0.5 * kRoundLegHeight * n;
+      surfaces.push_back(
+          make_cylinder(leg, n, kRoundRadius, 0.5 * kRoundLegHeight, id, h.reflectivity));
     }
     return;
   }
@@ -232,20 +239,24 @@ void Scene::add_handrail(const Handrail& h) {
   bar.reflectivity = h.reflectivity;
   bar.bar = {bar_center, a, n, 0.5 * kIssDepth, 0.5 * kIssWidth, kIssCorner, half};
   bar.bound_center = bar_center;
-  bar.bound_radius = std::sqrt(half * half + 0.25 * (kIssDepth * kIssDepth + kIssWidth * kIssWidth));
+  bar.bound_radius =
+      std::sqrt(half * half + 0.25 * (kIssDepth * kIssDepth + kIssWidth * kIssWidth));
   surfaces.push_back(bar);
   Eigen::Matrix3d R;
   R.col(0) = n;
   R.col(1) = a.cross(n);
   R.col(2) = a;
   for (double sign : {-1.0, 1.0}) {
-    const Eigen::Vector3d leg = h.foot_center + sign * (half - 0.5 * kIssLegAlong) * a + 0.5 * kIssOffset * n;
-    surfaces.push_back(make_box(leg, R, Eigen::Vector3d(0.5 * kIssOffset, 0.5 * kIssLegAcross, 0.5 * kIssLegAlong),
-                                id, h.reflectivity));
+    const Eigen::Vector3d leg =
+        h.foot_center + sign * (half - 0.5 * kIssLegAlong) * a + 0.5 * kIssOffset * n;
+    surfaces.push_back(
+        make_box(leg, R, Eigen::Vector3d(0.5 * kIssOffset, 0.5 * kIssLegAcross, 0.5 * kIssLegAlong),
+                 id, h.reflectivity));
   }
 }
 
-void Scene::add_cable(const std::vector<Eigen::Vector3d>& points, double diameter_m, double reflectivity) {
+void Scene::add_cable(const std::vector<Eigen::Vector3d>& points, double diameter_m,
+                      double reflectivity) {
   for (std::size_t k = 1; k < points.size(); ++k) {
     const Eigen::Vector3d seg = points[k] - points[k - 1];
     const double len = seg.norm();
@@ -255,8 +266,8 @@ void Scene::add_cable(const std::vector<Eigen::Vector3d>& points, double diamete
   }
 }
 
-void Scene::add_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R, const Eigen::Vector3d& size_m,
-                    double reflectivity) {
+void Scene::add_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
+                    const Eigen::Vector3d& size_m, double reflectivity) {
   surfaces.push_back(make_box(center, R, 0.5 * size_m, -1, reflectivity));
 }
 
@@ -270,10 +281,18 @@ bool intersect_scene(const Scene& scene, const Eigen::Vector3d& o, const Eigen::
     if (misses_bound(s, o, d, t)) continue;
     bool got = false;
     switch (s.kind) {
-      case SurfaceKind::kRect: got = hit_rect(s.rect, o, d, t_min, &t, &n); break;
-      case SurfaceKind::kCylinder: got = hit_cylinder(s.cylinder, o, d, t_min, &t, &n); break;
-      case SurfaceKind::kBox: got = hit_box(s.box, o, d, t_min, &t, &n); break;
-      case SurfaceKind::kRoundedBar: got = hit_rounded_bar(s.bar, o, d, t_min, &t, &n); break;
+      case SurfaceKind::kRect:
+        got = hit_rect(s.rect, o, d, t_min, &t, &n);
+        break;
+      case SurfaceKind::kCylinder:
+        got = hit_cylinder(s.cylinder, o, d, t_min, &t, &n);
+        break;
+      case SurfaceKind::kBox:
+        got = hit_box(s.box, o, d, t_min, &t, &n);
+        break;
+      case SurfaceKind::kRoundedBar:
+        got = hit_rounded_bar(s.bar, o, d, t_min, &t, &n);
+        break;
     }
     if (got) which = static_cast<std::int32_t>(k);
   }

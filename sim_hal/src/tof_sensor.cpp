@@ -117,7 +117,8 @@ void DepthRenderer::apply_flying_filter(std::vector<hal::DepthPoint>* out) {
       if (pts[i].confidence == 0) continue;
       const float th = static_cast<float>(flying_pixel_threshold_m(pts[i].z_m));
       drop[i] = (jump(i, i - 1, th) && jump(i, i + 1, th)) ||
-                (jump(i, i - static_cast<std::size_t>(w), th) && jump(i, i + static_cast<std::size_t>(w), th));
+                (jump(i, i - static_cast<std::size_t>(w), th) &&
+                 jump(i, i + static_cast<std::size_t>(w), th));
     }
   }
   for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -146,7 +147,8 @@ void DepthRenderer::render(const Scene& scene, const Eigen::Isometry3d& T_world_
   double exposure = s.max_exposure;
   if (!sorted_.empty()) {
     const std::size_t k = sorted_.size() * 95 / 100;
-    std::nth_element(sorted_.begin(), sorted_.begin() + static_cast<std::ptrdiff_t>(k), sorted_.end());
+    std::nth_element(sorted_.begin(), sorted_.begin() + static_cast<std::ptrdiff_t>(k),
+                     sorted_.end());
     if (sorted_[k] > 0.0f) exposure = std::min(s.max_exposure, s.amplitude_target / sorted_[k]);
   }
 
@@ -158,7 +160,8 @@ void DepthRenderer::render(const Scene& scene, const Eigen::Isometry3d& T_world_
     hal::DepthPoint& p = (*out)[i];
     const double amplitude = amplitude_[i] * exposure;
     p.gray_value = static_cast<std::uint16_t>(std::min(amplitude, 4095.0));
-    const double sigma = std::max(s.noise_min_m, s.noise_ref_m * std::sqrt(s.amplitude_ref / std::max(amplitude, 1e-3)));
+    const double sigma = std::max(
+        s.noise_min_m, s.noise_ref_m * std::sqrt(s.amplitude_ref / std::max(amplitude, 1e-3)));
     // Draw the noise for every pixel, used or not, so that switching one
     // effect off leaves the others' random numbers where they were.
     const double noise = noise_rng.normal();
@@ -180,7 +183,8 @@ void DepthRenderer::render(const Scene& scene, const Eigen::Isometry3d& T_world_
     p.y_m = q.y();
     p.z_m = q.z();
     p.noise_m = static_cast<float>(s.noise ? sigma : 0.0);
-    p.confidence = static_cast<std::uint8_t>(std::clamp(255.0 * (1.0 - sigma / s.noise_cutoff_m), 1.0, 255.0));
+    p.confidence =
+        static_cast<std::uint8_t>(std::clamp(255.0 * (1.0 - sigma / s.noise_cutoff_m), 1.0, 255.0));
   }
   if (s.flying_filter) apply_flying_filter(out);
 }

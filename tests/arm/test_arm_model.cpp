@@ -7,7 +7,8 @@ namespace {
 
 void test_deployed_arm_points_aft(void**) {
   const arm::ArmGeometry g;
-  const Eigen::Isometry3d T = arm::forward_kinematics(g, arm::posture_angles(arm::Posture::kDeploy));
+  const Eigen::Isometry3d T =
+      arm::forward_kinematics(g, arm::posture_angles(arm::Posture::kDeploy));
   const double reach = g.proximal_link_m + g.distal_link_m;
   assert_near(T.translation().x(), g.p_body_base.x() - reach, 1e-9);
   assert_near(T.translation().y(), g.p_body_base.y(), 1e-9);
@@ -21,7 +22,8 @@ void test_tilt_and_pan_move_the_gripper(void**) {
   // gripper stays at link length from the joint.
   const Eigen::Isometry3d T = arm::forward_kinematics(g, {M_PI / 2, 0.0});
   assert_near((T.translation() - g.p_body_base).norm(), g.proximal_link_m + g.distal_link_m, 1e-9);
-  assert_near(std::fabs(T.translation().z() - g.p_body_base.z()), g.proximal_link_m + g.distal_link_m, 1e-9);
+  assert_near(std::fabs(T.translation().z() - g.p_body_base.z()),
+              g.proximal_link_m + g.distal_link_m, 1e-9);
   // Panning moves only the distal link.
   const Eigen::Isometry3d P = arm::forward_kinematics(g, {0.0, M_PI / 2});
   const Eigen::Vector3d elbow = g.p_body_base - Eigen::Vector3d(g.proximal_link_m, 0, 0);

@@ -40,7 +40,8 @@ void test_maker_vectors_parse(void**) {
   StatusParser p;
   int packets = 0;
   const std::uint8_t ping_reply[] = {0xFF, 0xFF, 0x01, 0x02, 0x00, 0xFC};
-  assert_int_equal(static_cast<int>(feed(p, ping_reply, sizeof ping_reply, &packets)), static_cast<int>(ParseEvent::kPacket));
+  assert_int_equal(static_cast<int>(feed(p, ping_reply, sizeof ping_reply, &packets)),
+                   static_cast<int>(ParseEvent::kPacket));
   assert_int_equal(p.packet().id, 1);
   assert_int_equal(p.packet().n_params, 0);
   const std::uint8_t temp_reply[] = {0xFF, 0xFF, 0x01, 0x03, 0x00, 0x20, 0xDB};
@@ -53,8 +54,8 @@ void test_parser_resynchronises(void**) {
   StatusParser p;
   int packets = 0;
   // Noise, a corrupt packet, an impossible length, then a good packet.
-  const std::uint8_t stream[] = {0x12, 0xFF, 0x00, 0xFF, 0xFF, 0x01, 0x03, 0x00, 0x20, 0xDA,
-                                 0xFF, 0xFF, 0x01, 0xF0, 0xFF, 0xFF, 0xFF, 0x01, 0x02, 0x24, 0xD8};
+  const std::uint8_t stream[] = {0x12, 0xFF, 0x00, 0xFF, 0xFF, 0x01, 0x03, 0x00, 0x20, 0xDA, 0xFF,
+                                 0xFF, 0x01, 0xF0, 0xFF, 0xFF, 0xFF, 0x01, 0x02, 0x24, 0xD8};
   int bad_checksum = 0, bad_length = 0;
   for (std::uint8_t b : stream) {
     const ParseEvent e = p.push(b);

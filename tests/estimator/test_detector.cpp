@@ -68,8 +68,9 @@ void test_wall_only_reports_no_handrail(void**) {
   HandrailDetector det(synthetic_config());
   // A detection first, so that a stale pose could leak.
   std::vector<CloudPoint> bar_pts;
-  assert_int_equal(static_cast<int>(det.detect(testing_support::render(bar_scene(), &bar_pts)).status),
-                   static_cast<int>(DetectStatus::kFound));
+  assert_int_equal(
+      static_cast<int>(det.detect(testing_support::render(bar_scene(), &bar_pts)).status),
+      static_cast<int>(DetectStatus::kFound));
   const HandrailDetection d = det.detect(cloud);
   assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kNoCandidates));
   assert_no_pose(d);
@@ -93,7 +94,8 @@ void test_invalid_and_oversized_frames(void**) {
   assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFrameTooLarge));
   assert_no_pose(d);
   const OrganizedCloud empty{3, 3, 0, 0, nullptr};
-  assert_int_equal(static_cast<int>(det.detect(empty).status), static_cast<int>(DetectStatus::kEmptyFrame));
+  assert_int_equal(static_cast<int>(det.detect(empty).status),
+                   static_cast<int>(DetectStatus::kEmptyFrame));
 }
 
 void test_repeatable(void**) {
@@ -135,7 +137,8 @@ void test_budget_overrun_is_reported(void**) {
   assert_true(d.processing_time_us >= 5000);
   cfg.budget_us = 0;  // no budget: the same clock is no obstacle
   HandrailDetector unlimited(cfg, &time);
-  assert_int_equal(static_cast<int>(unlimited.detect(cloud).status), static_cast<int>(DetectStatus::kFound));
+  assert_int_equal(static_cast<int>(unlimited.detect(cloud).status),
+                   static_cast<int>(DetectStatus::kFound));
 }
 
 struct Truth {
@@ -146,17 +149,20 @@ struct Truth {
 Truth read_truth(const std::string& name) {
   hal::JsonValue root;
   std::string error;
-  assert_true(hal::parse_json(testing_support::read_text(testing_support::data_path(name)), &root, &error));
+  assert_true(
+      hal::parse_json(testing_support::read_text(testing_support::data_path(name)), &root, &error));
   const hal::JsonValue& h = root.find("handrails")->items[0];
   Truth t;
   for (int e = 0; e < 2; ++e)
-    for (int k = 0; k < 3; ++k) t.ends[e][k] = static_cast<float>(h.find("ends")->items[e].items[k].number);
+    for (int k = 0; k < 3; ++k)
+      t.ends[e][k] = static_cast<float>(h.find("ends")->items[e].items[k].number);
   for (int k = 0; k < 3; ++k) t.normal[k] = static_cast<float>(h.find("normal")->items[k].number);
   t.length = static_cast<float>(h.find("length")->number);
   return t;
 }
 
-HandrailDetection detect_recorded(const std::string& pcd, const HandrailGeometry& geometry, Method method) {
+HandrailDetection detect_recorded(const std::string& pcd, const HandrailGeometry& geometry,
+                                  Method method) {
   hal::PcdFrame frame;
   std::string error;
   if (!hal::read_pcd(testing_support::data_path(pcd), &frame, &error)) {
@@ -190,18 +196,21 @@ void check_against_truth(const HandrailDetection& d, const Truth& t) {
 void test_recorded_iss_and_round_frames(void**) {
   check_against_truth(detect_recorded("table2-iss-1.pcd", iss_handrail(0.55f), Method::kProposed),
                       read_truth("table2-iss-1.truth.json"));
-  check_against_truth(detect_recorded("table2-round-2.pcd", paper_round_handrail(0.55f), Method::kProposed),
-                      read_truth("table2-round-2.truth.json"));
+  check_against_truth(
+      detect_recorded("table2-round-2.pcd", paper_round_handrail(0.55f), Method::kProposed),
+      read_truth("table2-round-2.truth.json"));
 }
 
 void test_recorded_clutter_has_no_handrail(void**) {
-  const HandrailDetection d = detect_recorded("clutter-only-0.pcd", iss_handrail(0.55f), Method::kProposed);
+  const HandrailDetection d =
+      detect_recorded("clutter-only-0.pcd", iss_handrail(0.55f), Method::kProposed);
   assert_int_not_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFound));
   assert_no_pose(d);
 }
 
 void test_basic_method_runs(void**) {
-  const HandrailDetection d = detect_recorded("table2-round-2.pcd", paper_round_handrail(0.55f), Method::kBasic);
+  const HandrailDetection d =
+      detect_recorded("table2-round-2.pcd", paper_round_handrail(0.55f), Method::kBasic);
   assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFound));
   assert_int_equal(static_cast<int>(d.state), static_cast<int>(HandrailState::kNoEnd));
   assert_true(d.inliers > 0);

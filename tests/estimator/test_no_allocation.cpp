@@ -20,7 +20,8 @@ namespace {
 std::atomic<bool> g_armed{false};
 std::atomic<long> g_allocations{0};
 void note_allocation() {
-  if (g_armed.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (g_armed.load(std::memory_order_relaxed))
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
 }
 }  // namespace
 
@@ -34,10 +35,18 @@ void* operator new[](std::size_t n) {
   if (void* p = std::malloc(n ? n : 1)) return p;
   std::abort();
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
 
 #if !defined(__SANITIZE_ADDRESS__)
 // glibc's own allocator under the hooks.
@@ -114,10 +123,12 @@ void test_no_allocation_over_hundreds_of_frames(void**) {
     OrganizedCloud c = clouds[static_cast<std::size_t>(n) % clouds.size()];
     c.frame_id = static_cast<std::uint64_t>(n);  // new random numbers each frame
     const Method m = n % 7 == 3 ? Method::kBasic : Method::kProposed;
-    found += detector_for[static_cast<std::size_t>(n) % clouds.size()]->detect(c, m).status == DetectStatus::kFound;
+    found += detector_for[static_cast<std::size_t>(n) % clouds.size()]->detect(c, m).status ==
+             DetectStatus::kFound;
   }
   g_armed = false;
-  if (g_allocations != 0) print_error("%ld allocations while processing frames\n", g_allocations.load());
+  if (g_allocations != 0)
+    print_error("%ld allocations while processing frames\n", g_allocations.load());
   assert_int_equal(g_allocations.load(), 0);
   assert_true(found > 100);  // the frames exercised the full pipeline
 }

@@ -35,7 +35,8 @@ SyntheticScene bar_scene(double noise = 0.0) {
 }
 
 // Runs the stages up to the filters on a scene; returns the wall.
-Plane run_filters(const OrganizedCloud& cloud, const DetectorConfig& cfg, Workspace& ws, PixelScale* scale) {
+Plane run_filters(const OrganizedCloud& cloud, const DetectorConfig& cfg, Workspace& ws,
+                  PixelScale* scale) {
   ws.valid.clear();
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     ws.flags[i] = 0;
@@ -203,7 +204,8 @@ void test_cluster_splits_at_gaps(void**) {
   Workspace ws(cloud.size());
   PixelScale scale;
   const Plane wall = run_filters(cloud, cfg, ws, &scale);
-  LineModel line{true, Eigen::Vector3f(0, 0, static_cast<float>(kWall)), Eigen::Vector3f(0, 1, 0), 0.0f, 0};
+  LineModel line{true, Eigen::Vector3f(0, 0, static_cast<float>(kWall)), Eigen::Vector3f(0, 1, 0),
+                 0.0f, 0};
   collect_line_inliers(cloud, cfg, wall, line, ws.side, ws.line[0]);
   const std::size_t before = ws.line[0].size();
   const Cluster c = cluster_along_line(cloud, cfg, line, ws.line[0], ws.line_t_m.get());
@@ -218,14 +220,14 @@ void test_handrail_frame_is_eq5(void**) {
   const Eigen::Matrix3f R = handrail_frame(n, line);
   assert_near((R.transpose() * R - Eigen::Matrix3f::Identity()).norm(), 0.0, 1e-5);
   assert_near(R.determinant(), 1.0, 1e-5);
-  assert_near((R.col(0) - n).norm(), 0.0, 1e-6);
-  assert_near(R.col(2).dot(n), 0.0, 1e-6);
+  assert_near((R.col(0) - n).norm(), 0.0, 1e-5);
+  assert_near(R.col(2).dot(n), 0.0, 1e-5);
   // Sign: a bar nearer vertical points up the image (-y).
   assert_true(R.col(2).y() < 0.0f);
-  assert_near((R.col(1) - R.col(2).cross(R.col(0))).norm(), 0.0, 1e-6);
+  assert_near((R.col(1) - R.col(2).cross(R.col(0))).norm(), 0.0, 1e-5);
   // The projection of the line keeps its direction.
   const Eigen::Vector3f proj = (line - line.dot(n) * n).normalized();
-  assert_near(std::fabs(proj.dot(R.col(2))), 1.0, 1e-6);
+  assert_near(std::fabs(proj.dot(R.col(2))), 1.0, 1e-5);
 }
 
 void test_target_pose(void**) {
@@ -244,7 +246,8 @@ void test_target_pose(void**) {
 
 void test_handrail_state(void**) {
   const bool both[2] = {true, true}, one[2] = {false, true}, none[2] = {false, false};
-  assert_int_equal(static_cast<int>(handrail_state(both)), static_cast<int>(HandrailState::kBothEnds));
+  assert_int_equal(static_cast<int>(handrail_state(both)),
+                   static_cast<int>(HandrailState::kBothEnds));
   assert_int_equal(static_cast<int>(handrail_state(one)), static_cast<int>(HandrailState::kOneEnd));
   assert_int_equal(static_cast<int>(handrail_state(none)), static_cast<int>(HandrailState::kNoEnd));
   assert_string_equal(to_string(HandrailState::kBothEnds), "BE");

@@ -6,28 +6,35 @@
 
 namespace {
 
-std::vector<hal::DepthPoint> frame_points(float z) { return std::vector<hal::DepthPoint>(6, hal::DepthPoint{0, 0, z, 0, 0, 255}); }
+std::vector<hal::DepthPoint> frame_points(float z) {
+  return std::vector<hal::DepthPoint>(6, hal::DepthPoint{0, 0, z, 0, 0, 255});
+}
 
 void test_newest_wins_and_old_frames_are_dropped(void**) {
   fsw_app::FrameRing ring(3, 3, 2);
   std::vector<hal::DepthPoint> out(6);
   hal::DepthFrame got;
-  assert_int_equal(static_cast<int>(ring.pop_newest(&got, out.data())), static_cast<int>(fsw_app::RingStatus::kEmpty));
+  assert_int_equal(static_cast<int>(ring.pop_newest(&got, out.data())),
+                   static_cast<int>(fsw_app::RingStatus::kEmpty));
   for (int k = 1; k <= 5; ++k) {
     const std::vector<hal::DepthPoint> pts = frame_points(static_cast<float>(k));
-    assert_int_equal(static_cast<int>(ring.push({static_cast<std::uint64_t>(k), k * 100, 3, 2, pts.data()})),
-                     static_cast<int>(fsw_app::RingStatus::kOk));
+    assert_int_equal(
+        static_cast<int>(ring.push({static_cast<std::uint64_t>(k), k * 100, 3, 2, pts.data()})),
+        static_cast<int>(fsw_app::RingStatus::kOk));
   }
-  assert_int_equal(static_cast<int>(ring.pop_newest(&got, out.data())), static_cast<int>(fsw_app::RingStatus::kOk));
+  assert_int_equal(static_cast<int>(ring.pop_newest(&got, out.data())),
+                   static_cast<int>(fsw_app::RingStatus::kOk));
   assert_int_equal(got.frame_id, 5);
   assert_int_equal(got.capture_time_us, 500);
   assert_true(got.points[0].z_m == 5.0f);
   // Frames 1..4 were never read: two overwritten, two skipped.
   assert_int_equal(ring.dropped(), 4);
   assert_int_equal(ring.pushed(), 5);
-  assert_int_equal(static_cast<int>(ring.pop_newest(&got, out.data())), static_cast<int>(fsw_app::RingStatus::kEmpty));
+  assert_int_equal(static_cast<int>(ring.pop_newest(&got, out.data())),
+                   static_cast<int>(fsw_app::RingStatus::kEmpty));
   const std::vector<hal::DepthPoint> big(12);
-  assert_int_equal(static_cast<int>(ring.push({6, 0, 4, 3, big.data()})), static_cast<int>(fsw_app::RingStatus::kFrameTooLarge));
+  assert_int_equal(static_cast<int>(ring.push({6, 0, 4, 3, big.data()})),
+                   static_cast<int>(fsw_app::RingStatus::kFrameTooLarge));
 }
 
 void test_producer_and_consumer_threads(void**) {
@@ -44,7 +51,7 @@ void test_producer_and_consumer_threads(void**) {
   while (last < kFrames) {
     hal::DepthFrame got;
     if (ring.pop_newest(&got, out.data()) != fsw_app::RingStatus::kOk) continue;
-    assert_true(got.frame_id > last);                          // never older, never twice
+    assert_true(got.frame_id > last);                             // never older, never twice
     assert_true(out[5].z_m == static_cast<float>(got.frame_id));  // whole frame, not torn
     last = got.frame_id;
     ++read;

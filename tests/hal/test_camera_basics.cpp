@@ -11,7 +11,8 @@ namespace {
 void test_status_strings(void**) {
   assert_string_equal(hal::to_string(hal::CameraStatus::kSuccess), "SUCCESS");
   assert_string_equal(hal::to_string(hal::CameraStatus::kDisconnected), "DISCONNECTED");
-  assert_string_equal(hal::to_string(hal::CameraStatus::kInsufficientBandwidth), "INSUFFICIENT_BANDWIDTH");
+  assert_string_equal(hal::to_string(hal::CameraStatus::kInsufficientBandwidth),
+                      "INSUFFICIENT_BANDWIDTH");
   assert_int_equal(static_cast<int>(hal::CameraStatus::kUseCaseNotSupported), 5001);
   assert_string_equal(hal::to_string(static_cast<hal::CameraStatus>(1)), "UNKNOWN_STATUS");
 }

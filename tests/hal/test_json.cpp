@@ -10,7 +10,8 @@ namespace {
 void test_parses_values_with_lines(void**) {
   JsonValue v;
   std::string error;
-  const char* text = "{\n \"a\": 1.5,\n \"b\": [true, null, \"x\\ny\"],\n \"c\": {\"d\": -2e3}\n}\n";
+  const char* text =
+      "{\n \"a\": 1.5,\n \"b\": [true, null, \"x\\ny\"],\n \"c\": {\"d\": -2e3}\n}\n";
   assert_true(hal::parse_json(text, &v, &error));
   assert_true(v.is_object());
   assert_near(v.find("a")->number, 1.5, 0);

@@ -12,8 +12,9 @@ namespace {
 std::vector<hal::DepthPoint> sample_points(std::uint32_t w, std::uint32_t h) {
   std::vector<hal::DepthPoint> pts(w * h);
   for (std::uint32_t i = 0; i < w * h; ++i) {
-    pts[i] = {0.01f * static_cast<float>(i % w), -0.02f * static_cast<float>(i / w), 0.5f + 0.001f * static_cast<float>(i),
-              0.002f, static_cast<std::uint16_t>(100 + i), static_cast<std::uint8_t>(200)};
+    pts[i] = {0.01f * static_cast<float>(i % w),     -0.02f * static_cast<float>(i / w),
+              0.5f + 0.001f * static_cast<float>(i), 0.002f,
+              static_cast<std::uint16_t>(100 + i),   static_cast<std::uint8_t>(200)};
   }
   pts[3].confidence = 0;  // invalid by confidence
   return pts;
@@ -41,14 +42,19 @@ void round_trip(hal::PcdEncoding encoding) {
   }
 }
 
-void test_round_trip_ascii(void**) { round_trip(hal::PcdEncoding::kAscii); }
-void test_round_trip_binary(void**) { round_trip(hal::PcdEncoding::kBinary); }
+void test_round_trip_ascii(void**) {
+  round_trip(hal::PcdEncoding::kAscii);
+}
+void test_round_trip_binary(void**) {
+  round_trip(hal::PcdEncoding::kBinary);
+}
 
 void test_reads_other_layouts(void**) {
   // Another field order, an extra field with COUNT 3, doubles, no
   // confidence: NaN and z = 0 are the invalid points.
   const std::string text =
-      "# written by another tool\nVERSION .7\nFIELDS rgb z normal y x\nSIZE 4 8 4 4 4\nTYPE U F F F F\n"
+      "# written by another tool\nVERSION .7\nFIELDS rgb z normal y x\nSIZE 4 8 4 4 4\nTYPE U F F "
+      "F F\n"
       "COUNT 1 1 3 1 1\nWIDTH 2\nHEIGHT 2\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n"
       "7 1.5 0 0 1 0.25 0.5\n7 nan 0 0 1 0 0\n7 0 0 0 1 0.1 0.1\n7 2 0 0 1 -0.5 -0.25\n";
   hal::PcdFrame f;
@@ -75,14 +81,16 @@ void test_reads_the_recorded_frame(void**) {
 
 void test_malformed_files_are_named_and_explained(void**) {
   const std::string good_header =
-      "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 2\nPOINTS 4\n";
+      "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 2\nPOINTS "
+      "4\n";
   struct Case {
     std::string text;
     const char* error;
   } cases[] = {
       {"VERSION 0.7\nFIELDS x y z\nSIZE 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 2\nDATA ascii\n",
        "bad.pcd: SIZE has 2 entries for 3 fields"},
-      {"VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 2\nPOINTS 5\nDATA ascii\n",
+      {"VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 2\nPOINTS 5\nDATA "
+       "ascii\n",
        "bad.pcd: POINTS 5 does not equal WIDTH x HEIGHT 4"},
       {"VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4\nHEIGHT 1\nDATA ascii\n",
        "bad.pcd: not an organized cloud (HEIGHT 1); depth frames are organized"},
@@ -90,14 +98,20 @@ void test_malformed_files_are_named_and_explained(void**) {
        "bad.pcd: FIELDS must include x, y and z"},
       {"VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F Q\nWIDTH 2\nHEIGHT 2\nDATA ascii\n",
        "bad.pcd: field 'z' has unsupported TYPE Q with SIZE 4"},
-      {"VERSION 0.7\nFROBNICATE 3\n", "bad.pcd: header line 2 (FROBNICATE): unknown header keyword"},
-      {"VERSION 0.7\nFIELDS x y z\nWIDTH two\n", "bad.pcd: header line 3 (WIDTH): expected one non-negative integer"},
+      {"VERSION 0.7\nFROBNICATE 3\n",
+       "bad.pcd: header line 2 (FROBNICATE): unknown header keyword"},
+      {"VERSION 0.7\nFIELDS x y z\nWIDTH two\n",
+       "bad.pcd: header line 3 (WIDTH): expected one non-negative integer"},
       {"VERSION 0.7\nFIELDS x y z\n", "bad.pcd: header ends before a DATA line"},
-      {good_header + "DATA binary_compressed\n", "bad.pcd: DATA binary_compressed is not supported (ascii or binary)"},
-      {good_header + "DATA ascii\n1 2 3\n1 2 3\n1 2\n", "bad.pcd: line 12: expected 3 numbers, found 2"},
+      {good_header + "DATA binary_compressed\n",
+       "bad.pcd: DATA binary_compressed is not supported (ascii or binary)"},
+      {good_header + "DATA ascii\n1 2 3\n1 2 3\n1 2\n",
+       "bad.pcd: line 12: expected 3 numbers, found 2"},
       {good_header + "DATA ascii\n1 2 3\n1 2 3\n", "bad.pcd: ascii data truncated: 2 of 4 points"},
-      {good_header + "DATA ascii\n1 2 3\n1 x 3\n1 2 3\n1 2 3\n", "bad.pcd: line 11: expected 3 numbers, found 1"},
-      {good_header + "DATA binary\n" + std::string(40, '\0'), "bad.pcd: binary data truncated: 40 bytes for 4 points of 12 bytes"},
+      {good_header + "DATA ascii\n1 2 3\n1 x 3\n1 2 3\n1 2 3\n",
+       "bad.pcd: line 11: expected 3 numbers, found 1"},
+      {good_header + "DATA binary\n" + std::string(40, '\0'),
+       "bad.pcd: binary data truncated: 40 bytes for 4 points of 12 bytes"},
   };
   for (const Case& c : cases) {
     hal::PcdFrame f;

@@ -29,15 +29,20 @@ void test_errors_name_file_and_line(void**) {
     std::string text;
     const char* error;
   } cases[] = {
-      {"{\n \"name\": \"t\",\n \"scene\": {\"walls\": []},\n \"poses\": []\n}", "s.json:3: \"walls\" must hold at least one wall"},
-      {"{\n \"name\": \"t\",\n \"colour\": 3\n}", "s.json:3: unknown key \"colour\" in the scenario"},
+      {"{\n \"name\": \"t\",\n \"scene\": {\"walls\": []},\n \"poses\": []\n}",
+       "s.json:3: \"walls\" must hold at least one wall"},
+      {"{\n \"name\": \"t\",\n \"colour\": 3\n}",
+       "s.json:3: unknown key \"colour\" in the scenario"},
       {"{\n \"name\": 5\n}", "s.json:2: \"name\" must be a string, not a number"},
-      {"{\n \"name\": \"t\",\n \"scene\": {\"walls\": [{\"center\": [0, 0, 0], \"normal\": [1, 0, 0], \"size\": [2, 2]}],\n"
-       "  \"handrails\": [\n   {\"kind\": \"square\", \"foot\": [0,0,0], \"normal\": [1,0,0], \"axis\": [0,0,1], \"length\": 0.5}]},\n"
+      {"{\n \"name\": \"t\",\n \"scene\": {\"walls\": [{\"center\": [0, 0, 0], \"normal\": [1, 0, "
+       "0], \"size\": [2, 2]}],\n"
+       "  \"handrails\": [\n   {\"kind\": \"square\", \"foot\": [0,0,0], \"normal\": [1,0,0], "
+       "\"axis\": [0,0,1], \"length\": 0.5}]},\n"
        " \"poses\": [{\"position\": [1, 0, 0]}]\n}",
        "s.json:5: \"kind\" must be \"round\" or \"iss\", not \"square\""},
       {"{\n \"name\": \"t\",\n \"seed\": 1,\n \"scene\": {\n}", "s.json:5: unterminated object"},
-      {"{\"name\": \"t\", \"scene\": {\"walls\": [{\"center\": [0, 0, 0], \"normal\": [1, 0, 0], \"size\": [2, 2]}]},\n"
+      {"{\"name\": \"t\", \"scene\": {\"walls\": [{\"center\": [0, 0, 0], \"normal\": [1, 0, 0], "
+       "\"size\": [2, 2]}]},\n"
        " \"poses\": [{\"position\": [1, 0, 0], \"frames\": 0}]}",
        "s.json:2: \"frames\" = 0 is outside 1 .. 100000"},
   };

@@ -28,7 +28,8 @@ Scene wall_scene(double distance_m, double tilt_deg = 0.0) {
 }
 
 Eigen::Isometry3d looking_at_wall() {
-  return camera_pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 0, 1), Eigen::Vector3d::Zero());
+  return camera_pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 0, 1),
+                     Eigen::Vector3d::Zero());
 }
 
 void test_plane_geometry(void**) {
@@ -53,7 +54,8 @@ void test_plane_geometry(void**) {
   DepthRenderer r(cam, all_off());
   std::vector<hal::DepthPoint> pts;
   r.render(wall_scene(1.25), looking_at_wall(), 1, 0, &pts);
-  const int centre = static_cast<int>(std::lround(cam.lens.cy_px)) * 224 + static_cast<int>(std::lround(cam.lens.cx_px));
+  const int centre = static_cast<int>(std::lround(cam.lens.cy_px)) * 224 +
+                     static_cast<int>(std::lround(cam.lens.cx_px));
   assert_near(pts[centre].z_m, 1.25, 1e-5);
 }
 
@@ -123,7 +125,8 @@ EffectCounts count_effects(const ToFSettings& s, const Scene& scene) {
       ++c.invalid;
       continue;
     }
-    const double range = std::sqrt(pts[i].x_m * pts[i].x_m + pts[i].y_m * pts[i].y_m + pts[i].z_m * pts[i].z_m);
+    const double range =
+        std::sqrt(pts[i].x_m * pts[i].x_m + pts[i].y_m * pts[i].y_m + pts[i].z_m * pts[i].z_m);
     const double err = range - r.true_range_m()[i];
     c.deviating += std::fabs(err) > 1e-5;
     c.off_surface += std::fabs(err) > 0.01;  // mixed depths, centimetres off
@@ -151,7 +154,7 @@ void test_each_effect_switches(void**) {
   ToFSettings multipath = all_off();
   multipath.multipath = true;
   const EffectCounts mp = count_effects(multipath, scene);
-  assert_true(mp.deviating > 100);   // the wall around the bar reads long
+  assert_true(mp.deviating > 100);      // the wall around the bar reads long
   assert_int_equal(mp.off_surface, 0);  // by millimetres, not centimetres
 
   // Invalid pixels: grazing incidence and out of range.
@@ -165,7 +168,8 @@ void test_each_effect_switches(void**) {
 
 void test_same_seed_same_bytes(void**) {
   const Scene scene = bar_on_wall(HandrailKind::kPaperRound);
-  DepthRenderer a(pico_flexx_intrinsics(), ToFSettings{}), b(pico_flexx_intrinsics(), ToFSettings{});
+  DepthRenderer a(pico_flexx_intrinsics(), ToFSettings{}),
+      b(pico_flexx_intrinsics(), ToFSettings{});
   std::vector<hal::DepthPoint> pa, pb, pc;
   a.render(scene, looking_at_wall(), 99, 4, &pa);
   b.render(scene, looking_at_wall(), 99, 4, &pb);
@@ -220,8 +224,8 @@ void test_ground_truth(void**) {
   assert_near(ht.normal_cam.z(), -1.0, 1e-9);
   assert_near((ht.ends_cam[1] - ht.ends_cam[0]).norm(), 0.55, 1e-9);
   // Turned away: nothing in view.
-  const Eigen::Isometry3d away =
-      camera_pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1), Eigen::Vector3d::Zero());
+  const Eigen::Isometry3d away = camera_pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 0, 0),
+                                             Eigen::Vector3d(0, 0, 1), Eigen::Vector3d::Zero());
   assert_int_equal(compute_truth(scene, cam, away, 4).handrails.size(), 0);
   assert_true(truth_to_json(t, "f.pcd").find("\"end_in_view\":[true,true]") != std::string::npos);
 }
@@ -230,12 +234,9 @@ void test_ground_truth(void**) {
 
 int main() {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_plane_geometry),
-      cmocka_unit_test(test_field_of_view),
-      cmocka_unit_test(test_bar_image_width),
-      cmocka_unit_test(test_each_effect_switches),
-      cmocka_unit_test(test_same_seed_same_bytes),
-      cmocka_unit_test(test_noise_matches_its_model),
+      cmocka_unit_test(test_plane_geometry),       cmocka_unit_test(test_field_of_view),
+      cmocka_unit_test(test_bar_image_width),      cmocka_unit_test(test_each_effect_switches),
+      cmocka_unit_test(test_same_seed_same_bytes), cmocka_unit_test(test_noise_matches_its_model),
       cmocka_unit_test(test_ground_truth),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -17,11 +17,11 @@ extern "C" {
 }
 
 // Fails the test with a message when |a - b| > tol.
-#define assert_near(a, b, tol)                                                            \
-  do {                                                                                    \
-    const double hrp_a_ = (a), hrp_b_ = (b), hrp_t_ = (tol);                              \
-    if (!(hrp_a_ - hrp_b_ <= hrp_t_ && hrp_b_ - hrp_a_ <= hrp_t_)) {                      \
-      print_error("%s = %g, expected %g +- %g\n", #a, hrp_a_, hrp_b_, hrp_t_);            \
-      fail();                                                                             \
-    }                                                                                     \
+#define assert_near(a, b, tol)                                                 \
+  do {                                                                         \
+    const double hrp_a_ = (a), hrp_b_ = (b), hrp_t_ = (tol);                   \
+    if (!(hrp_a_ - hrp_b_ <= hrp_t_ && hrp_b_ - hrp_a_ <= hrp_t_)) {           \
+      print_error("%s = %g, expected %g +- %g\n", #a, hrp_a_, hrp_b_, hrp_t_); \
+      fail();                                                                  \
+    }                                                                          \
   } while (0)

@@ -29,8 +29,8 @@ struct SyntheticScene {
 // A vertical (image y) round bar of the paper's size standing `offset_m`
 // (centre line) off a fronto-parallel wall at `wall_m`, centred on the
 // optical axis, `length_m` long.
-inline Cylinder vertical_bar(double wall_m, double offset_m, double length_m, double radius_m = 0.0175,
-                             double x_m = 0.0) {
+inline Cylinder vertical_bar(double wall_m, double offset_m, double length_m,
+                             double radius_m = 0.0175, double x_m = 0.0) {
   return {x_m, 0.0, wall_m - offset_m, 0.0, 1.0, 0.0, radius_m, -0.5 * length_m, 0.5 * length_m};
 }
 
@@ -54,7 +54,8 @@ inline bool hit_cylinder(const Cylinder& c, const double r[3], double* t_out) {
 }
 
 // Renders the scene into `points` (resized) and returns a view of it.
-inline estimator::OrganizedCloud render(const SyntheticScene& s, std::vector<estimator::CloudPoint>* points,
+inline estimator::OrganizedCloud render(const SyntheticScene& s,
+                                        std::vector<estimator::CloudPoint>* points,
                                         std::uint64_t frame_id = 0) {
   points->assign(static_cast<std::size_t>(s.width * s.height), estimator::CloudPoint{});
   std::uint64_t state = s.seed * 0x9e3779b97f4a7c15ull + frame_id;
@@ -81,9 +82,12 @@ inline estimator::OrganizedCloud render(const SyntheticScene& s, std::vector<est
         for (int k = 0; k < 12; ++k) n += uniform();
         t += s.noise_m * (n - 6.0);
       }
-      (*points)[static_cast<std::size_t>(v * s.width + u)] = {
-          static_cast<float>(t * r[0]), static_cast<float>(t * r[1]), static_cast<float>(t * r[2]),
-          static_cast<float>(s.noise_m), 1000, 255};
+      (*points)[static_cast<std::size_t>(v * s.width + u)] = {static_cast<float>(t * r[0]),
+                                                              static_cast<float>(t * r[1]),
+                                                              static_cast<float>(t * r[2]),
+                                                              static_cast<float>(s.noise_m),
+                                                              1000,
+                                                              255};
     }
   }
   estimator::OrganizedCloud cloud;

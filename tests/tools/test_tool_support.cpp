@@ -10,10 +10,11 @@ namespace {
 void test_config_file(void**) {
   estimator::DetectorConfig cfg;
   std::string error;
-  assert_true(tools::parse_detector_config(
-      "{\n \"handrail\": {\"kind\": \"round\", \"bar_length_m\": 1.055},\n \"line_iterations\": 120,\n"
-      " \"gripper_angle_deg\": 90\n}",
-      "c.json", &cfg, &error));
+  assert_true(
+      tools::parse_detector_config("{\n \"handrail\": {\"kind\": \"round\", \"bar_length_m\": "
+                                   "1.055},\n \"line_iterations\": 120,\n"
+                                   " \"gripper_angle_deg\": 90\n}",
+                                   "c.json", &cfg, &error));
   assert_near(cfg.handrail.bar_length_m, 1.055, 1e-6);
   assert_near(cfg.handrail.bar_width_m, 0.035, 1e-6);
   assert_int_equal(cfg.line_iterations, 120);
@@ -23,11 +24,14 @@ void test_config_file(void**) {
     const char* text;
     const char* error;
   } cases[] = {
-      {"{\n \"line_iterations\": 0\n}", "c.json:2: \"line_iterations\" is out of range or inconsistent with the other settings"},
+      {"{\n \"line_iterations\": 0\n}",
+       "c.json:2: \"line_iterations\" is out of range or inconsistent with the other settings"},
       {"{\n \"speed\": 3\n}", "c.json:2: unknown key \"speed\""},
       {"{\n \"plane_inlier_m\": \"big\"\n}", "c.json:2: \"plane_inlier_m\" must be a number"},
-      {"{\n \"handrail\": {\"kind\": \"oval\"}\n}", "c.json:2: \"handrail.kind\" must be \"iss\" or \"round\""},
-      {"{\n \"min_line_inliers\": 2.5\n}", "c.json:2: \"min_line_inliers\" must be a non-negative integer"},
+      {"{\n \"handrail\": {\"kind\": \"oval\"}\n}",
+       "c.json:2: \"handrail.kind\" must be \"iss\" or \"round\""},
+      {"{\n \"min_line_inliers\": 2.5\n}",
+       "c.json:2: \"min_line_inliers\" must be a non-negative integer"},
       {"{\n\n", "c.json:3: expected a quoted key"},
   };
   for (const Case& c : cases) {
@@ -42,8 +46,9 @@ void test_detection_json(void**) {
   estimator::HandrailDetection d;
   d.status = estimator::DetectStatus::kNoLine;
   d.processing_time_us = 1250;
-  assert_string_equal(tools::detection_to_json("a\"b.pcd", d).c_str(),
-                      "{\"frame\":\"a\\\"b.pcd\",\"state\":\"NH\",\"reason\":\"NO_LINE\",\"time_ms\":1.250}");
+  assert_string_equal(
+      tools::detection_to_json("a\"b.pcd", d).c_str(),
+      "{\"frame\":\"a\\\"b.pcd\",\"state\":\"NH\",\"reason\":\"NO_LINE\",\"time_ms\":1.250}");
   d.status = estimator::DetectStatus::kFound;
   d.state = estimator::HandrailState::kOneEnd;
   d.end_seen[1] = true;

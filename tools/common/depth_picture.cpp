@@ -18,14 +18,16 @@ Image depth_picture(const hal::DepthFrame& frame) {
     for (std::uint32_t c = 0; c < frame.width; ++c) {
       const hal::DepthPoint& p = frame.at(r, c);
       if (hal::is_valid(p)) {
-        img.set(static_cast<int>(c), static_cast<int>(r), false_colour(hi > lo ? (p.z_m - lo) / (hi - lo) : 0.0));
+        img.set(static_cast<int>(c), static_cast<int>(r),
+                false_colour(hi > lo ? (p.z_m - lo) / (hi - lo) : 0.0));
       }
     }
   }
   return img.scaled(kPictureScale);
 }
 
-void draw_segment(Image* img, const std::function<bool(const Eigen::Vector3d&, Eigen::Vector2d*)>& project,
+void draw_segment(Image* img,
+                  const std::function<bool(const Eigen::Vector3d&, Eigen::Vector2d*)>& project,
                   const Eigen::Vector3d& a, const Eigen::Vector3d& b, Rgb colour, int thickness) {
   constexpr int kSteps = 60;
   Eigen::Vector2d prev;

@@ -50,9 +50,12 @@ constexpr UintKey kUintKeys[] = {
     {"max_height", &estimator::DetectorConfig::max_height},
 };
 
-std::string at(const std::string& path, const JsonValue& v) { return path + ":" + std::to_string(v.line) + ": "; }
+std::string at(const std::string& path, const JsonValue& v) {
+  return path + ":" + std::to_string(v.line) + ": ";
+}
 
-bool read_handrail(const JsonValue& h, const std::string& path, estimator::HandrailGeometry* g, std::string* error) {
+bool read_handrail(const JsonValue& h, const std::string& path, estimator::HandrailGeometry* g,
+                   std::string* error) {
   if (!h.is_object()) {
     *error = at(path, h) + "\"handrail\" must be an object";
     return false;
@@ -77,10 +80,10 @@ bool read_handrail(const JsonValue& h, const std::string& path, estimator::Handr
   }
   g->bar_length_m = static_cast<float>(length);
   for (const auto& m : h.members) {
-    float* field = m.first == "bar_width_m" ? &g->bar_width_m
-                   : m.first == "bar_depth_m" ? &g->bar_depth_m
+    float* field = m.first == "bar_width_m"           ? &g->bar_width_m
+                   : m.first == "bar_depth_m"         ? &g->bar_depth_m
                    : m.first == "bar_center_offset_m" ? &g->bar_center_offset_m
-                   : nullptr;
+                                                      : nullptr;
     if (m.first == "kind" || m.first == "bar_length_m") continue;
     if (!field) {
       *error = at(path, m.second) + "unknown key \"handrail." + m.first + "\"";
@@ -124,7 +127,8 @@ bool parse_detector_config(const std::string& text, const std::string& path,
         *error = at(path, v) + "\"" + key + "\" must be a number";
         return false;
       }
-      if (key == "gripper_angle_deg") c.gripper_angle_rad = static_cast<float>(v.number * M_PI / 180.0);
+      if (key == "gripper_angle_deg")
+        c.gripper_angle_rad = static_cast<float>(v.number * M_PI / 180.0);
       if (key == "seed") c.seed = static_cast<std::uint64_t>(v.number);
       if (key == "budget_us") c.budget_us = static_cast<std::int64_t>(v.number);
     }
@@ -161,7 +165,8 @@ bool parse_detector_config(const std::string& text, const std::string& path,
   return true;
 }
 
-bool load_detector_config(const std::string& path, estimator::DetectorConfig* cfg, std::string* error) {
+bool load_detector_config(const std::string& path, estimator::DetectorConfig* cfg,
+                          std::string* error) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     *error = path + ": cannot open the configuration file";

@@ -9,7 +9,8 @@
 
 namespace tools {
 
-bool load_detector_config(const std::string& path, estimator::DetectorConfig* cfg, std::string* error);
+bool load_detector_config(const std::string& path, estimator::DetectorConfig* cfg,
+                          std::string* error);
 bool parse_detector_config(const std::string& text, const std::string& path,
                            estimator::DetectorConfig* cfg, std::string* error);
 

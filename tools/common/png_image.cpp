@@ -14,7 +14,8 @@ Image::Image(int width, int height, Rgb fill)
     : width_(width), height_(height), pixels_(static_cast<std::size_t>(width * height), fill) {}
 
 void Image::set(int x, int y, Rgb c) {
-  if (x >= 0 && y >= 0 && x < width_ && y < height_) pixels_[static_cast<std::size_t>(y * width_ + x)] = c;
+  if (x >= 0 && y >= 0 && x < width_ && y < height_)
+    pixels_[static_cast<std::size_t>(y * width_ + x)] = c;
 }
 
 void Image::line(double x0, double y0, double x1, double y1, Rgb c, int thickness) {
@@ -38,7 +39,8 @@ void Image::disc(double cx, double cy, double radius, Rgb c) {
   const int r = static_cast<int>(std::ceil(radius));
   for (int dy = -r; dy <= r; ++dy)
     for (int dx = -r; dx <= r; ++dx)
-      if (dx * dx + dy * dy <= radius * radius) set(static_cast<int>(std::lround(cx)) + dx, static_cast<int>(std::lround(cy)) + dy, c);
+      if (dx * dx + dy * dy <= radius * radius)
+        set(static_cast<int>(std::lround(cx)) + dx, static_cast<int>(std::lround(cy)) + dy, c);
 }
 
 void Image::text(int x, int y, const std::string& s, Rgb c, int scale) {
@@ -47,7 +49,9 @@ void Image::text(int x, int y, const std::string& s, Rgb c, int scale) {
     const std::uint8_t* rows = font5x7_rows(ch);
     for (int row = 0; row < 7; ++row)
       for (int col = 0; col < 5; ++col)
-        if (rows[row] & (0x10u >> col)) rect(pen + col * scale, y + row * scale, pen + col * scale + scale - 1, y + row * scale + scale - 1, c);
+        if (rows[row] & (0x10u >> col))
+          rect(pen + col * scale, y + row * scale, pen + col * scale + scale - 1,
+               y + row * scale + scale - 1, c);
     pen += 6 * scale;
   }
 }
@@ -59,42 +63,64 @@ Image Image::scaled(int factor) const {
   return out;
 }
 
+namespace {
+
+// libpng reports errors by longjmp; this function keeps no C++ object with a
+// destructor alive across its setjmp, so nothing can be skipped or clobbered.
+bool write_png_rows(FILE* f, int width, int height, const Rgb* pixels) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_init_io(png, f);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < height; ++y) {
+    png_write_row(
+        png, reinterpret_cast<png_const_bytep>(pixels + static_cast<std::ptrdiff_t>(y) * width));
+  }
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+}  // namespace
+
 bool Image::write_png(const std::string& path, std::string* error) const {
   FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) {
     *error = path + ": cannot create the PNG file";
     return false;
   }
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    std::fclose(f);
-    *error = path + ": libpng failed while writing";
+  const bool ok = write_png_rows(f, width_, height_, pixels_.data());
+  if (std::fclose(f) != 0 || !ok) {
+    *error = path + ": writing the PNG failed (disk full?)";
     return false;
   }
-  png_init_io(png, f);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width_), static_cast<png_uint_32>(height_), 8,
-               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < height_; ++y) {
-    png_write_row(png, reinterpret_cast<png_const_bytep>(&pixels_[static_cast<std::size_t>(y * width_)]));
-  }
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  std::fclose(f);
   return true;
 }
 
 Rgb false_colour(double t) {
   t = std::clamp(t, 0.0, 1.0);
   // A short "turbo"-like ramp: red, yellow, green, cyan, blue.
-  static const Rgb stops[] = {{200, 30, 30}, {240, 200, 40}, {60, 190, 70}, {40, 180, 200}, {40, 60, 190}};
+  static const Rgb stops[] = {
+      {200, 30, 30}, {240, 200, 40}, {60, 190, 70}, {40, 180, 200}, {40, 60, 190}};
   const double x = t * 4.0;
   const int k = std::min(3, static_cast<int>(x));
   const double f = x - k;
-  auto mix = [f](std::uint8_t a, std::uint8_t b) { return static_cast<std::uint8_t>(a + f * (b - a)); };
-  return {mix(stops[k].r, stops[k + 1].r), mix(stops[k].g, stops[k + 1].g), mix(stops[k].b, stops[k + 1].b)};
+  auto mix = [f](std::uint8_t a, std::uint8_t b) {
+    return static_cast<std::uint8_t>(a + f * (b - a));
+  };
+  return {mix(stops[k].r, stops[k + 1].r), mix(stops[k].g, stops[k + 1].g),
+          mix(stops[k].b, stops[k + 1].b)};
 }
 
 }  // namespace tools

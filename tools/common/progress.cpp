@@ -15,11 +15,13 @@ void Progress::update(std::size_t done, const std::string& note) {
     constexpr int kWidth = 30;
     const int filled = percent * kWidth / 100;
     std::fprintf(stderr, "\r%-22s [%.*s%*s] %3d%% %zu/%zu %s\033[K", label_.c_str(), filled,
-                 "##############################", kWidth - filled, "", percent, done, total_, note.c_str());
+                 "##############################", kWidth - filled, "", percent, done, total_,
+                 note.c_str());
     std::fflush(stderr);
   } else if (percent / 10 != last_decile_) {
     last_decile_ = percent / 10;
-    std::fprintf(stderr, "%s: %d%% (%zu/%zu) %s\n", label_.c_str(), percent, done, total_, note.c_str());
+    std::fprintf(stderr, "%s: %d%% (%zu/%zu) %s\n", label_.c_str(), percent, done, total_,
+                 note.c_str());
   }
 }
 

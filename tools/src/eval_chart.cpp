@@ -17,8 +17,8 @@ struct Metric {
 const Rgb kSeriesColours[] = {{150, 150, 150}, {40, 110, 200}, {220, 120, 40}};
 
 // One panel: groups of bars (one per series) for each metric.
-void draw_panel(Image* img, int x0, int y0, int w, int h, const char* unit, const Metric* metrics, int n_metrics,
-                const std::vector<ChartSeries>& series) {
+void draw_panel(Image* img, int x0, int y0, int w, int h, const char* unit, const Metric* metrics,
+                int n_metrics, const std::vector<ChartSeries>& series) {
   double top = 1e-9;
   for (int m = 0; m < n_metrics; ++m)
     for (const ChartSeries& s : series) {
@@ -71,8 +71,10 @@ bool write_error_chart(const std::string& path, const std::string& title,
     img.rect(x, 14, x + 14, 26, kSeriesColours[s % 3]);
     img.text(x + 20, 16, series[s].name, {0, 0, 0});
   }
-  const Metric position[] = {{"X", &Tally::x}, {"Y", &Tally::y}, {"Z", &Tally::z}, {"BEAM", &Tally::beam}};
-  const Metric rotation[] = {{"ROLL", &Tally::roll}, {"PITCH", &Tally::pitch}, {"YAW", &Tally::yaw}};
+  const Metric position[] = {
+      {"X", &Tally::x}, {"Y", &Tally::y}, {"Z", &Tally::z}, {"BEAM", &Tally::beam}};
+  const Metric rotation[] = {
+      {"ROLL", &Tally::roll}, {"PITCH", &Tally::pitch}, {"YAW", &Tally::yaw}};
   draw_panel(&img, 80, 70, 380, 290, "MM", position, 4, series);
   draw_panel(&img, 560, 70, 300, 290, "DEG", rotation, 3, series);
   img.text(20, 400, "BARS: ABSOLUTE MEAN ERROR. WHISKERS: + 1 STANDARD DEVIATION", {90, 90, 90});

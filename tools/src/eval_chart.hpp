@@ -9,7 +9,7 @@
 namespace tools {
 
 struct ChartSeries {
-  std::string name;   // e.g. "basic"
+  std::string name;  // e.g. "basic"
   const Tally* tally;
 };
 

@@ -28,8 +28,10 @@ int target_handrail(const sim_hal::FrameTruth& truth, double gripper_angle_rad) 
   return best;
 }
 
-FrameErrors score_detection(const estimator::HandrailDetection& d, const sim_hal::HandrailTruth& t) {
-  const Eigen::Matrix3f R_gt = estimator::handrail_frame(t.normal_cam.cast<float>(), t.axis_cam.cast<float>());
+FrameErrors score_detection(const estimator::HandrailDetection& d,
+                            const sim_hal::HandrailTruth& t) {
+  const Eigen::Matrix3f R_gt =
+      estimator::handrail_frame(t.normal_cam.cast<float>(), t.axis_cam.cast<float>());
   const Eigen::Vector3f e = R_gt.transpose() * (d.p_cam_center - t.center_cam.cast<float>());
   FrameErrors out{};
   out.x_mm = 1000.0 * e.x();
@@ -43,15 +45,19 @@ FrameErrors score_detection(const estimator::HandrailDetection& d, const sim_hal
   out.yaw_deg = kRadToDeg * rotvec.z();
   out.axis_deg = kRadToDeg * std::acos(std::min(1.0f, std::fabs(R_gt.col(2).dot(d.axis()))));
   out.normal_deg = kRadToDeg * std::acos(std::clamp(R_gt.col(0).dot(d.normal()), -1.0f, 1.0f));
-  out.beam_mm = d.state == estimator::HandrailState::kBothEnds ? 1000.0 * (d.beam_length_m - t.length_m) : NAN;
+  out.beam_mm = d.state == estimator::HandrailState::kBothEnds
+                    ? 1000.0 * (d.beam_length_m - t.length_m)
+                    : NAN;
   return out;
 }
 
-bool is_correct(const FrameErrors& e) { return e.perpendicular_mm < 50.0 && e.axis_deg < 15.0; }
+bool is_correct(const FrameErrors& e) {
+  return e.perpendicular_mm < 50.0 && e.axis_deg < 15.0;
+}
 
 estimator::HandrailState expected_state(const sim_hal::HandrailTruth& t) {
   const int n = (t.end_in_view[0] ? 1 : 0) + (t.end_in_view[1] ? 1 : 0);
-  return n == 2 ? estimator::HandrailState::kBothEnds
+  return n == 2   ? estimator::HandrailState::kBothEnds
          : n == 1 ? estimator::HandrailState::kOneEnd
                   : estimator::HandrailState::kNoEnd;
 }
@@ -85,7 +91,8 @@ std::string Stats::mean_sd(int decimals) const {
   return buf;
 }
 
-void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth, int target) {
+void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth,
+                int target) {
   ++frames;
   time_ms.add(d.processing_time_us / 1000.0);
   const bool has_target = target >= 0;

@@ -13,10 +13,10 @@ namespace tools {
 // y = across the bar, z = along it), millimetres and degrees.
 struct FrameErrors {
   double x_mm, y_mm, z_mm;  // z only meaningful when both ends are seen
-  double perpendicular_mm;   // distance of the position from the true centre line
+  double perpendicular_mm;  // distance of the position from the true centre line
   double roll_deg, pitch_deg, yaw_deg;
   double axis_deg, normal_deg;
-  double beam_mm;            // NaN unless both ends were seen
+  double beam_mm;  // NaN unless both ends were seen
 };
 
 // The handrail the gripper should take: among those at least 30 % visible,
@@ -44,10 +44,10 @@ struct Stats {
 // Everything hreval accumulates for one group of frames and one method.
 struct Tally {
   int frames = 0;
-  int target_frames = 0;   // frames with a handrail to take
-  int found = 0;           // frames where the detector reported a handrail
-  int correct = 0;         // ... and it was the target
-  int false_found = 0;     // ... and it was not (or there was none)
+  int target_frames = 0;  // frames with a handrail to take
+  int found = 0;          // frames where the detector reported a handrail
+  int correct = 0;        // ... and it was the target
+  int false_found = 0;    // ... and it was not (or there was none)
   int state_checked = 0;
   int state_right = 0;
   Stats x, y, z, perpendicular, roll, pitch, yaw, axis, normal, beam, time_ms;

@@ -38,7 +38,7 @@ void usage(FILE* out) {
 }
 
 bool is_dir(const std::string& path) {
-  struct stat st{};
+  struct stat st {};
   return stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
 }
 
@@ -57,7 +57,8 @@ bool collect_inputs(const std::vector<std::string>& args, std::vector<std::strin
     }
     DIR* d = opendir(a.c_str());
     if (!d) {
-      std::fprintf(stderr, "hrdetect: %s: cannot read folder: %s\n", a.c_str(), std::strerror(errno));
+      std::fprintf(stderr, "hrdetect: %s: cannot read folder: %s\n", a.c_str(),
+                   std::strerror(errno));
       ok = false;
       continue;
     }
@@ -68,7 +69,8 @@ bool collect_inputs(const std::vector<std::string>& args, std::vector<std::strin
     }
     closedir(d);
     std::sort(found.begin(), found.end());
-    if (found.empty()) std::fprintf(stderr, "hrdetect: %s: no .pcd files in this folder\n", a.c_str());
+    if (found.empty())
+      std::fprintf(stderr, "hrdetect: %s: no .pcd files in this folder\n", a.c_str());
     files->insert(files->end(), found.begin(), found.end());
   }
   return ok;
@@ -82,8 +84,9 @@ std::string stem(const std::string& path) {
 
 // One picture per stage: the pixels a stage kept in colour over the depth
 // image in grey, like the paper's Figure 5 (a) to (f).
-void write_debug_pictures(const std::string& dir, const std::string& name, const hal::DepthFrame& frame,
-                          const estimator::OrganizedCloud& cloud, const estimator::HandrailDetector& det,
+void write_debug_pictures(const std::string& dir, const std::string& name,
+                          const hal::DepthFrame& frame, const estimator::OrganizedCloud& cloud,
+                          const estimator::HandrailDetector& det,
                           const estimator::HandrailDetection& d) {
   const estimator::Workspace& ws = det.workspace();
   const int w = static_cast<int>(frame.width), h = static_cast<int>(frame.height);
@@ -114,8 +117,13 @@ void write_debug_pictures(const std::string& dir, const std::string& name, const
       for (int c = 0; c < w; ++c) {
         const std::size_t i = static_cast<std::size_t>(r * w + c);
         if (!(ws.flags[i] & estimator::kFlagValid)) continue;
-        const std::uint8_t g = static_cast<std::uint8_t>(std::clamp(255.0f - 120.0f * frame.points[i].z_m, 40.0f, 200.0f));
-        img.set(c, r, (ws.flags[i] & s.flag) ? s.colour : tools::Rgb{static_cast<std::uint8_t>(g / 3), static_cast<std::uint8_t>(g / 3), static_cast<std::uint8_t>(g / 3)});
+        const std::uint8_t g = static_cast<std::uint8_t>(
+            std::clamp(255.0f - 120.0f * frame.points[i].z_m, 40.0f, 200.0f));
+        img.set(c, r,
+                (ws.flags[i] & s.flag)
+                    ? s.colour
+                    : tools::Rgb{static_cast<std::uint8_t>(g / 3), static_cast<std::uint8_t>(g / 3),
+                                 static_cast<std::uint8_t>(g / 3)});
       }
     }
     tools::Image big = img.scaled(tools::kPictureScale);
@@ -134,11 +142,13 @@ void write_debug_pictures(const std::string& dir, const std::string& name, const
   // The final pose over the depth image: centre line, centre, target offset.
   tools::Image pose = tools::depth_picture(frame);
   if (d.status == estimator::DetectStatus::kFound) {
-    tools::draw_segment(&pose, project, d.ends_cam[0].cast<double>(), d.ends_cam[1].cast<double>(), {255, 255, 255}, 3);
+    tools::draw_segment(&pose, project, d.ends_cam[0].cast<double>(), d.ends_cam[1].cast<double>(),
+                        {255, 255, 255}, 3);
     tools::draw_segment(&pose, project, d.p_cam_center.cast<double>(),
                         (d.p_cam_center + 0.1f * d.normal()).cast<double>(), {255, 0, 0}, 2);
     tools::draw_segment(&pose, project, d.p_cam_center.cast<double>(),
-                        (d.p_cam_center + 0.1f * d.R_cam_handrail.col(1)).cast<double>(), {0, 255, 0}, 2);
+                        (d.p_cam_center + 0.1f * d.R_cam_handrail.col(1)).cast<double>(),
+                        {0, 255, 0}, 2);
     pose.text(4, 4, std::string("POSE ") + to_string(d.state), {255, 255, 255}, 2);
   } else {
     pose.text(4, 4, std::string("NH ") + to_string(d.status), {255, 255, 255}, 2);
@@ -169,8 +179,10 @@ int main(int argc, char** argv) {
       return 0;
     } else if (a == "--method") {
       const std::string m = next("--method");
-      if (m == "proposed") method = estimator::Method::kProposed;
-      else if (m == "basic") method = estimator::Method::kBasic;
+      if (m == "proposed")
+        method = estimator::Method::kProposed;
+      else if (m == "basic")
+        method = estimator::Method::kBasic;
       else {
         std::fprintf(stderr, "hrdetect: --method must be proposed or basic, not '%s'\n", m.c_str());
         return 2;
@@ -180,14 +192,16 @@ int main(int argc, char** argv) {
       char* end = nullptr;
       gripper_deg = std::strtod(v.c_str(), &end);
       if (end == v.c_str() || *end != '\0' || gripper_deg < 0.0 || gripper_deg > 90.0) {
-        std::fprintf(stderr, "hrdetect: --gripper-angle takes degrees in 0..90, not '%s'\n", v.c_str());
+        std::fprintf(stderr, "hrdetect: --gripper-angle takes degrees in 0..90, not '%s'\n",
+                     v.c_str());
         return 2;
       }
       gripper_given = true;
     } else if (a == "--handrail") {
       handrail = next("--handrail");
       if (handrail != "iss" && handrail != "round") {
-        std::fprintf(stderr, "hrdetect: --handrail must be iss or round, not '%s'\n", handrail.c_str());
+        std::fprintf(stderr, "hrdetect: --handrail must be iss or round, not '%s'\n",
+                     handrail.c_str());
         return 2;
       }
     } else if (a == "--config") {
@@ -205,7 +219,8 @@ int main(int argc, char** argv) {
     usage(stderr);
     return 2;
   }
-  if (handrail == "round") cfg.handrail = estimator::paper_round_handrail(cfg.handrail.bar_length_m);
+  if (handrail == "round")
+    cfg.handrail = estimator::paper_round_handrail(cfg.handrail.bar_length_m);
   std::string error;
   if (!config_path.empty() && !tools::load_detector_config(config_path, &cfg, &error)) {
     std::fprintf(stderr, "hrdetect: %s\n", error.c_str());
@@ -213,7 +228,8 @@ int main(int argc, char** argv) {
   }
   if (gripper_given) cfg.gripper_angle_rad = static_cast<float>(gripper_deg * M_PI / 180.0);
   if (!debug_dir.empty() && mkdir(debug_dir.c_str(), 0755) != 0 && errno != EEXIST) {
-    std::fprintf(stderr, "hrdetect: cannot create %s: %s\n", debug_dir.c_str(), std::strerror(errno));
+    std::fprintf(stderr, "hrdetect: cannot create %s: %s\n", debug_dir.c_str(),
+                 std::strerror(errno));
     return 2;
   }
 
@@ -230,7 +246,9 @@ int main(int argc, char** argv) {
       continue;
     }
     if (pcd.width > cfg.max_width || pcd.height > cfg.max_height) {
-      std::fprintf(stderr, "hrdetect: %s: frame %ux%u is larger than the configured maximum %ux%u (max_width/max_height)\n",
+      std::fprintf(stderr,
+                   "hrdetect: %s: frame %ux%u is larger than the configured maximum %ux%u "
+                   "(max_width/max_height)\n",
                    file.c_str(), pcd.width, pcd.height, cfg.max_width, cfg.max_height);
       all_read = false;
       continue;

@@ -77,15 +77,17 @@ void table2_rows(std::ostringstream& md, const ScenarioResult& r) {
   md << "\n### " << r.name << " (" << r.kind << " handrail): errors in the true handrail frame\n\n"
      << "x = along the wall normal, y = across the bar, z = along the bar (both ends seen only); "
         "mean ± standard deviation over detections, millimetres and degrees.\n\n"
-     << "| config | method | detected | x mm | y mm | z mm | ⊥ bar mm | roll ° | pitch ° | yaw ° | axis ° | normal ° | beam mm | median ms |\n"
+     << "| config | method | detected | x mm | y mm | z mm | ⊥ bar mm | roll ° | pitch ° | yaw ° | "
+        "axis ° | normal ° | beam mm | median ms |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto row = [&](const std::string& label, const char* method, const tools::Tally& t) {
     char ms[16];
     std::snprintf(ms, sizeof ms, "%.2f", t.time_ms.median());
-    md << "| " << label << " | " << method << " | " << pct(t.correct, t.target_frames) << " | " << t.x.mean_sd()
-       << " | " << t.y.mean_sd() << " | " << t.z.mean_sd() << " | " << t.perpendicular.mean_sd() << " | "
-       << t.roll.mean_sd(2) << " | " << t.pitch.mean_sd(2) << " | " << t.yaw.mean_sd(2) << " | "
-       << t.axis.mean_sd(2) << " | " << t.normal.mean_sd(2) << " | " << t.beam.mean_sd() << " | " << ms << " |\n";
+    md << "| " << label << " | " << method << " | " << pct(t.correct, t.target_frames) << " | "
+       << t.x.mean_sd() << " | " << t.y.mean_sd() << " | " << t.z.mean_sd() << " | "
+       << t.perpendicular.mean_sd() << " | " << t.roll.mean_sd(2) << " | " << t.pitch.mean_sd(2)
+       << " | " << t.yaw.mean_sd(2) << " | " << t.axis.mean_sd(2) << " | " << t.normal.mean_sd(2)
+       << " | " << t.beam.mean_sd() << " | " << ms << " |\n";
   };
   for (const auto& kv : r.method[0].by_label) {
     for (int m = 0; m < 2; ++m) {
@@ -129,7 +131,8 @@ int main(int argc, char** argv) {
   }
   if (files.empty()) files = list_scenarios(scenario_dir);
   if (files.empty()) {
-    std::fprintf(stderr, "hreval: no scenario files in %s (give --scenarios DIR or files)\n", scenario_dir.c_str());
+    std::fprintf(stderr, "hreval: no scenario files in %s (give --scenarios DIR or files)\n",
+                 scenario_dir.c_str());
     return 2;
   }
   if (mkdir(out_dir.c_str(), 0755) != 0 && errno != EEXIST) {
@@ -152,7 +155,8 @@ int main(int argc, char** argv) {
     }
     ScenarioResult r;
     r.name = sc.name;
-    const bool round = !sc.scene.handrails.empty() && sc.scene.handrails[0].kind == sim_hal::HandrailKind::kPaperRound;
+    const bool round = !sc.scene.handrails.empty() &&
+                       sc.scene.handrails[0].kind == sim_hal::HandrailKind::kPaperRound;
     r.kind = round ? "round" : "iss";
     estimator::DetectorConfig cfg;
     cfg.handrail = round ? estimator::paper_round_handrail(0.55f) : estimator::iss_handrail(0.55f);
@@ -166,10 +170,12 @@ int main(int argc, char** argv) {
       renderer.render(sc.scene, sc.T_world_cam[f], sc.seed, f, &points);
       const sim_hal::FrameTruth truth = sim_hal::compute_truth(sc.scene, cam, sc.T_world_cam[f], f);
       const int target = tools::target_handrail(truth, cfg.gripper_angle_rad);
-      const hal::DepthFrame frame{f, static_cast<std::int64_t>(f) * 200000, cam.width, cam.height, points.data()};
+      const hal::DepthFrame frame{f, static_cast<std::int64_t>(f) * 200000, cam.width, cam.height,
+                                  points.data()};
       const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
-      const estimator::HandrailDetection d[2] = {proposed.detect(cloud, estimator::Method::kProposed),
-                                                 basic.detect(cloud, estimator::Method::kBasic)};
+      const estimator::HandrailDetection d[2] = {
+          proposed.detect(cloud, estimator::Method::kProposed),
+          basic.detect(cloud, estimator::Method::kBasic)};
       for (int m = 0; m < 2; ++m) {
         r.method[m].by_label[sc.pose_labels[f]].add(d[m], truth, target);
         r.method[m].all.add(d[m], truth, target);
@@ -177,7 +183,8 @@ int main(int argc, char** argv) {
       progress.update(f + 1);
     }
     const tools::Tally& p = r.method[0].all;
-    progress.finish("detected " + pct(p.correct, p.target_frames) + ", false " + pct(p.false_found, p.frames));
+    progress.finish("detected " + pct(p.correct, p.target_frames) + ", false " +
+                    pct(p.false_found, p.frames));
     results.push_back(std::move(r));
   }
 
@@ -185,18 +192,22 @@ int main(int argc, char** argv) {
   std::ostringstream md;
   md << "# hreval report\n\nDetection: frames where the detector found the target handrail "
         "(within 5 cm of its centre line and 15° of its direction) over frames with a target "
-        "(at least 30 % of a handrail in view). False: frames with a detection that is not the target, "
+        "(at least 30 % of a handrail in view). False: frames with a detection that is not the "
+        "target, "
         "over all frames. State: BE / OE / NE right, over correct detections.\n\n"
-     << "| scenario | handrail | method | frames | with target | detected | false | state right | median ms |\n"
+     << "| scenario | handrail | method | frames | with target | detected | false | state right | "
+        "median ms |\n"
      << "|---|---|---|---|---|---|---|---|---|\n";
   for (const ScenarioResult& r : results) {
     for (int m = 0; m < 2; ++m) {
       const tools::Tally& t = r.method[m].all;
       char ms[16];
       std::snprintf(ms, sizeof ms, "%.2f", t.time_ms.median());
-      md << "| " << r.name << " | " << r.kind << " | " << kMethodNames[m] << " | " << t.frames << " | "
-         << t.target_frames << " | " << pct(t.correct, t.target_frames) << " | " << pct(t.false_found, t.frames)
-         << " | " << (m == 0 ? pct(t.state_right, t.state_checked) : std::string("n/a")) << " | " << ms << " |\n";
+      md << "| " << r.name << " | " << r.kind << " | " << kMethodNames[m] << " | " << t.frames
+         << " | " << t.target_frames << " | " << pct(t.correct, t.target_frames) << " | "
+         << pct(t.false_found, t.frames) << " | "
+         << (m == 0 ? pct(t.state_right, t.state_checked) : std::string("n/a")) << " | " << ms
+         << " |\n";
     }
   }
   for (const ScenarioResult& r : results) {
@@ -204,8 +215,10 @@ int main(int argc, char** argv) {
     table2_rows(md, r);
     std::string error;
     const std::string chart = out_dir + "/figure15-" + r.name + ".png";
-    std::vector<tools::ChartSeries> series = {{"BASIC", &r.method[1].all}, {"PROPOSED", &r.method[0].all}};
-    if (tools::write_error_chart(chart, "POSE ERROR, " + r.name + " (ALL 8 CONFIGURATIONS)", series, &error)) {
+    std::vector<tools::ChartSeries> series = {{"BASIC", &r.method[1].all},
+                                              {"PROPOSED", &r.method[0].all}};
+    if (tools::write_error_chart(chart, "POSE ERROR, " + r.name + " (ALL 8 CONFIGURATIONS)", series,
+                                 &error)) {
       md << "\n![" << r.name << "](figure15-" << r.name << ".png)\n";
     } else {
       std::fprintf(stderr, "hreval: %s\n", error.c_str());
@@ -220,12 +233,15 @@ int main(int argc, char** argv) {
   for (const ScenarioResult& r : results) {
     const tools::Tally& p = r.method[0].all;
     if (r.name.rfind("table2", 0) == 0) {
-      std::printf("- %s: detection %.1f %% (target >= 99), position error perpendicular to the bar %.1f mm mean "
-                  "(target <= 5), axis %.2f deg, normal %.2f deg mean (target <= 1)\n",
-                  r.name.c_str(), p.rate(p.correct, p.target_frames), p.perpendicular.mean(), p.axis.mean(),
-                  p.normal.mean());
+      std::printf(
+          "- %s: detection %.1f %% (target >= 99), position error perpendicular to the bar %.1f mm "
+          "mean "
+          "(target <= 5), axis %.2f deg, normal %.2f deg mean (target <= 1)\n",
+          r.name.c_str(), p.rate(p.correct, p.target_frames), p.perpendicular.mean(), p.axis.mean(),
+          p.normal.mean());
     } else if (r.name == "clutter-only") {
-      std::printf("- %s: false detections %.1f %% of frames (target <= 1)\n", r.name.c_str(), p.rate(p.false_found, p.frames));
+      std::printf("- %s: false detections %.1f %% of frames (target <= 1)\n", r.name.c_str(),
+                  p.rate(p.false_found, p.frames));
     }
   }
   std::printf("\nreport: %s/report.md\n", out_dir.c_str());

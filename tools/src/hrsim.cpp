@@ -71,7 +71,9 @@ int main(int argc, char** argv) {
     } else if (scenario_path.empty()) {
       scenario_path = a;
     } else {
-      std::fprintf(stderr, "hrsim: more than one scenario given ('%s'); render them one at a time\n", a.c_str());
+      std::fprintf(stderr,
+                   "hrsim: more than one scenario given ('%s'); render them one at a time\n",
+                   a.c_str());
       return 2;
     }
   }
@@ -98,7 +100,8 @@ int main(int argc, char** argv) {
   const sim_hal::CameraIntrinsics cam = sim_hal::pico_flexx_intrinsics();
   sim_hal::DepthRenderer renderer(cam, scenario.sensor);
   std::size_t n = scenario.T_world_cam.size();
-  if (max_frames >= 0 && static_cast<std::size_t>(max_frames) < n) n = static_cast<std::size_t>(max_frames);
+  if (max_frames >= 0 && static_cast<std::size_t>(max_frames) < n)
+    n = static_cast<std::size_t>(max_frames);
   std::vector<hal::DepthPoint> points;
   tools::Progress progress("hrsim " + scenario.name, n);
   const std::int64_t period_us = static_cast<std::int64_t>(1e6 / scenario.frame_rate_hz);
@@ -106,25 +109,32 @@ int main(int argc, char** argv) {
   for (std::size_t f = 0; f < n; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     renderer.render(scenario.scene, scenario.T_world_cam[f], scenario.seed, f, &points);
-    render_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    const hal::DepthFrame frame{f, static_cast<std::int64_t>(f) * period_us, cam.width, cam.height, points.data()};
+    render_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const hal::DepthFrame frame{f, static_cast<std::int64_t>(f) * period_us, cam.width, cam.height,
+                                points.data()};
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05zu", f);
-    if (!hal::write_pcd(out_dir + "/" + name + ".pcd", frame, ascii ? hal::PcdEncoding::kAscii : hal::PcdEncoding::kBinary, &error)) {
+    if (!hal::write_pcd(out_dir + "/" + name + ".pcd", frame,
+                        ascii ? hal::PcdEncoding::kAscii : hal::PcdEncoding::kBinary, &error)) {
       std::fprintf(stderr, "\nhrsim: %s\n", error.c_str());
       return 1;
     }
-    const sim_hal::FrameTruth truth = sim_hal::compute_truth(scenario.scene, cam, scenario.T_world_cam[f], f);
+    const sim_hal::FrameTruth truth =
+        sim_hal::compute_truth(scenario.scene, cam, scenario.T_world_cam[f], f);
     truth_out << sim_hal::truth_to_json(truth, std::string(name) + ".pcd") << "\n";
     if (png) {
       tools::Image img = tools::depth_picture(frame);
-      auto proj = [&](const Eigen::Vector3d& p, Eigen::Vector2d* px) { return sim_hal::project(cam, p, px); };
+      auto proj = [&](const Eigen::Vector3d& p, Eigen::Vector2d* px) {
+        return sim_hal::project(cam, p, px);
+      };
       for (const sim_hal::HandrailTruth& h : truth.handrails) {
         tools::draw_segment(&img, proj, h.ends_cam[0], h.ends_cam[1], {255, 255, 255});
         for (int e = 0; e < 2; ++e) {
           Eigen::Vector2d px;
           if (h.end_in_view[e] && sim_hal::project(cam, h.ends_cam[e], &px)) {
-            img.disc((px.x() + 0.5) * tools::kPictureScale, (px.y() + 0.5) * tools::kPictureScale, 5, {255, 0, 255});
+            img.disc((px.x() + 0.5) * tools::kPictureScale, (px.y() + 0.5) * tools::kPictureScale,
+                     5, {255, 0, 255});
           }
         }
       }
@@ -136,8 +146,10 @@ int main(int argc, char** argv) {
     progress.update(f + 1);
   }
   char note[96];
-  std::snprintf(note, sizeof note, "mean render %.2f ms/frame", n ? render_ms / static_cast<double>(n) : 0.0);
+  std::snprintf(note, sizeof note, "mean render %.2f ms/frame",
+                n ? render_ms / static_cast<double>(n) : 0.0);
   progress.finish(note);
-  std::printf("hrsim: wrote %zu frames of '%s' to %s (%s)\n", n, scenario.name.c_str(), out_dir.c_str(), note);
+  std::printf("hrsim: wrote %zu frames of '%s' to %s (%s)\n", n, scenario.name.c_str(),
+              out_dir.c_str(), note);
   return 0;
 }

@@ -17,8 +17,8 @@ struct JointLimits {
 
 struct ArmGeometry {
   Eigen::Vector3d p_body_base = Eigen::Vector3d(-0.16, 0.0, -0.05);  // tilt joint, m
-  double proximal_link_m = 0.10;  // tilt axis to pan axis
-  double distal_link_m = 0.14;    // pan axis to the gripper's grasp point
+  double proximal_link_m = 0.10;                                     // tilt axis to pan axis
+  double distal_link_m = 0.14;  // pan axis to the gripper's grasp point
   JointLimits tilt{-120.0 * M_PI / 180.0, 90.0 * M_PI / 180.0};
   JointLimits pan{-90.0 * M_PI / 180.0, 90.0 * M_PI / 180.0};
 };

@@ -4,24 +4,37 @@ namespace dynamixel {
 
 const char* error_bit_name(std::uint8_t bit) {
   switch (bit) {
-    case 0: return "NONE";
-    case kErrorInputVoltage: return "INPUT_VOLTAGE";
-    case kErrorAngleLimit: return "ANGLE_LIMIT";
-    case kErrorOverheating: return "OVERHEATING";
-    case kErrorRange: return "RANGE";
-    case kErrorChecksum: return "CHECKSUM";
-    case kErrorOverload: return "OVERLOAD";
-    case kErrorInstruction: return "INSTRUCTION";
-    default: return "UNKNOWN";
+    case 0:
+      return "NONE";
+    case kErrorInputVoltage:
+      return "INPUT_VOLTAGE";
+    case kErrorAngleLimit:
+      return "ANGLE_LIMIT";
+    case kErrorOverheating:
+      return "OVERHEATING";
+    case kErrorRange:
+      return "RANGE";
+    case kErrorChecksum:
+      return "CHECKSUM";
+    case kErrorOverload:
+      return "OVERLOAD";
+    case kErrorInstruction:
+      return "INSTRUCTION";
+    default:
+      return "UNKNOWN";
   }
 }
 
 const char* to_string(ParseEvent event) {
   switch (event) {
-    case ParseEvent::kNone: return "NONE";
-    case ParseEvent::kPacket: return "PACKET";
-    case ParseEvent::kBadChecksum: return "BAD_CHECKSUM";
-    case ParseEvent::kBadLength: return "BAD_LENGTH";
+    case ParseEvent::kNone:
+      return "NONE";
+    case ParseEvent::kPacket:
+      return "PACKET";
+    case ParseEvent::kBadChecksum:
+      return "BAD_CHECKSUM";
+    case ParseEvent::kBadLength:
+      return "BAD_LENGTH";
   }
   return "UNKNOWN";
 }
@@ -84,7 +97,8 @@ ParseEvent StatusParser::push(std::uint8_t byte) {
       return ParseEvent::kNone;
     case State::kChecksum:
       state_ = State::kHeader1;
-      return static_cast<std::uint8_t>(~sum_) == byte ? ParseEvent::kPacket : ParseEvent::kBadChecksum;
+      return static_cast<std::uint8_t>(~sum_) == byte ? ParseEvent::kPacket
+                                                      : ParseEvent::kBadChecksum;
   }
   return ParseEvent::kNone;
 }

@@ -32,9 +32,8 @@ Eigen::Matrix3f handrail_frame(const Eigen::Vector3f& wall_normal,
 // round and rounded-rectangle bars seen at an angle, since both edges of the
 // silhouette are the bar's extremes across), height from the wall from the
 // configured geometry.
-bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                          const Plane& wall, const IndexList& inliers, const IndexList& silhouette,
-                          CenterLine* line);
+bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                          const IndexList& inliers, const IndexList& silhouette, CenterLine* line);
 
 // Walks the image past each extreme inlier along the bar. An end is seen
 // when the walk leaves the bar and meets the wall; it is not seen when the

@@ -16,7 +16,7 @@ struct LineModel {
   bool valid = false;
   Eigen::Vector3f point = Eigen::Vector3f::Zero();
   Eigen::Vector3f direction = Eigen::Vector3f::Zero();  // unit
-  float psi_rad = 0.0f;  // atan(|dx| / |dy|): 0 along image y
+  float psi_rad = 0.0f;                                 // atan(|dx| / |dy|): 0 along image y
   std::uint32_t score = 0;
 };
 
@@ -31,9 +31,8 @@ void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorCon
                                   LineModel candidates[2]);
 
 // The points within the inlier distance of the line, into out.
-void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                          const Plane& wall, const LineModel& line, const IndexList& points,
-                          IndexList& out);
+void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                          const LineModel& line, const IndexList& points, IndexList& out);
 
 // Drops the points within the inlier distance of the line, so that the next
 // search finds the next line (used when a line fails verification: a cable
@@ -62,6 +61,7 @@ int select_by_gripper_angle(const DetectorConfig& cfg, const LineModel candidate
 // (offset + depth / 2 from the wall, within the tolerance). Its height is
 // the mode of the inliers' distances from the wall. Rejects cables that
 // pass the width test at the wrong height. *front_m receives the estimate.
-bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const IndexList& inliers, float* front_m);
+bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const IndexList& inliers,
+                           float* front_m);
 
 }  // namespace estimator

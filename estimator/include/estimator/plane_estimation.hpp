@@ -21,7 +21,7 @@ struct PlaneEstimate {
 bool fit_plane_least_squares(const OrganizedCloud& cloud, const std::int32_t* indices,
                              std::size_t count, Plane* plane);
 
-PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                             Random& rng, Workspace& ws);
+PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& cfg, Random& rng,
+                             Workspace& ws);
 
 }  // namespace estimator

@@ -16,12 +16,12 @@ const char* to_string(HandrailState state);  // "NH", "BE", "OE", "NE"
 // Why a frame produced what it did.
 enum class DetectStatus : std::uint8_t {
   kFound,
-  kEmptyFrame,         // no valid points in range
-  kFrameTooLarge,      // larger than the size the detector was built for
-  kNoPlane,            // no wall with enough support
-  kNoCandidates,       // nothing passed the handrail tests
-  kNoLine,             // no line of handrail length
-  kDeadlineMissed,     // over the per-frame budget; result dropped
+  kEmptyFrame,      // no valid points in range
+  kFrameTooLarge,   // larger than the size the detector was built for
+  kNoPlane,         // no wall with enough support
+  kNoCandidates,    // nothing passed the handrail tests
+  kNoLine,          // no line of handrail length
+  kDeadlineMissed,  // over the per-frame budget; result dropped
 };
 const char* to_string(DetectStatus status);
 
@@ -50,8 +50,8 @@ struct HandrailDetection {
   std::int64_t capture_time_us = 0;
   // The fields below are meaningful only when status == kFound; they are
   // zeroed otherwise so no stale pose leaks into a "not found" result.
-  Eigen::Vector3f p_cam_center = Eigen::Vector3f::Zero();   // on the bar's centre line
-  Eigen::Matrix3f R_cam_handrail = Eigen::Matrix3f::Zero(); // columns: normal, y, axis
+  Eigen::Vector3f p_cam_center = Eigen::Vector3f::Zero();    // on the bar's centre line
+  Eigen::Matrix3f R_cam_handrail = Eigen::Matrix3f::Zero();  // columns: normal, y, axis
   Eigen::Vector3f ends_cam[2] = {Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero()};
   bool end_seen[2] = {false, false};  // [0] at -axis, [1] at +axis
   float visible_length_m = 0.0f;      // extent of the line inliers

@@ -10,15 +10,15 @@ struct DepthPoint {
   float x_m;
   float y_m;
   float z_m;
-  float noise_m;              // standard deviation of the depth measurement
-  std::uint16_t gray_value;   // amplitude
-  std::uint8_t confidence;    // 0 = invalid, 255 = full confidence
+  float noise_m;             // standard deviation of the depth measurement
+  std::uint16_t gray_value;  // amplitude
+  std::uint8_t confidence;   // 0 = invalid, 255 = full confidence
 };
 
 // Pinhole model with Brown-Conrady distortion, as royale reports it.
 struct LensParameters {
-  double cx_px = 0.0, cy_px = 0.0;  // principal point
-  double fx_px = 0.0, fy_px = 0.0;  // focal lengths
+  double cx_px = 0.0, cy_px = 0.0;      // principal point
+  double fx_px = 0.0, fy_px = 0.0;      // focal lengths
   double k1 = 0.0, k2 = 0.0, k3 = 0.0;  // radial
   double p1 = 0.0, p2 = 0.0;            // tangential
 };

@@ -18,7 +18,7 @@ class JsonValue {
   bool boolean = false;
   double number = 0.0;
   std::string text;
-  std::vector<JsonValue> items;                             // arrays
+  std::vector<JsonValue> items;                            // arrays
   std::vector<std::pair<std::string, JsonValue>> members;  // objects, in file order
 
   bool is_object() const { return type == Type::kObject; }

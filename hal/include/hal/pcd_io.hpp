@@ -25,7 +25,8 @@ struct PcdFrame {
 
 // On failure returns false with *error as "PATH: what is wrong".
 bool read_pcd(const std::string& path, PcdFrame* out, std::string* error);
-bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out, std::string* error);
+bool parse_pcd(const std::string& bytes, const std::string& path, PcdFrame* out,
+               std::string* error);
 
 bool write_pcd(const std::string& path, const DepthFrame& frame, PcdEncoding encoding,
                std::string* error);

@@ -7,8 +7,8 @@
 namespace hal {
 
 struct UseCase {
-  const char* name;           // e.g. "MODE_5_45FPS_500"
-  std::uint8_t raw_frames;    // 9 = two modulation frequencies, 5 = one
+  const char* name;         // e.g. "MODE_5_45FPS_500"
+  std::uint8_t raw_frames;  // 9 = two modulation frequencies, 5 = one
   std::uint16_t frame_rate_hz;
   std::uint16_t max_exposure_us;
 };

@@ -52,10 +52,10 @@ struct StatusPacket {
 };
 
 enum class ParseEvent : std::uint8_t {
-  kNone,          // need more bytes
-  kPacket,        // a whole, valid status packet is ready
-  kBadChecksum,   // a packet arrived with a wrong checksum; dropped
-  kBadLength,     // a length byte that cannot be; resynchronising
+  kNone,         // need more bytes
+  kPacket,       // a whole, valid status packet is ready
+  kBadChecksum,  // a packet arrived with a wrong checksum; dropped
+  kBadLength,    // a length byte that cannot be; resynchronising
 };
 const char* to_string(ParseEvent event);
 
