@@ -79,6 +79,26 @@ const char* to_string(HandrailState state) {
   return "??";
 }
 
+const char* to_string(LineVerdict verdict) {
+  switch (verdict) {
+    case LineVerdict::kAccepted:
+      return "ACCEPTED";
+    case LineVerdict::kTooFewPoints:
+      return "TOO_FEW_POINTS";
+    case LineVerdict::kWrongHeight:
+      return "WRONG_HEIGHT";
+    case LineVerdict::kNoCenterLine:
+      return "NO_CENTER_LINE";
+    case LineVerdict::kTooShort:
+      return "TOO_SHORT";
+    case LineVerdict::kTooLong:
+      return "TOO_LONG";
+    case LineVerdict::kBeamLength:
+      return "BEAM_LENGTH";
+  }
+  return "UNKNOWN";
+}
+
 const char* to_string(DetectStatus status) {
   switch (status) {
     case DetectStatus::kFound:
@@ -110,10 +130,11 @@ Workspace::Workspace(std::size_t n)
       side(n),
       line{IndexList(n), IndexList(n)},
       scratch(n),
+      band(n),
       values(new float[n]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 3 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7);
+  return max_pixels * (sizeof(float) * 3 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 8);
 }
 
 }  // namespace estimator

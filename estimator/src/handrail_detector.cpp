@@ -93,15 +93,20 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   return out;
 }
 
-bool HandrailDetector::verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
-                                        const IndexList& points, IndexList& inliers,
-                                        CenterLine* line, bool ends[2], float end_t[2]) {
-  collect_line_inliers(cloud, cfg_, wall_, candidate, points, inliers);
-  const Cluster cluster = cluster_along_line(cloud, cfg_, candidate, inliers, ws_.line_t_m.get());
-  if (cluster.count < cfg_.min_line_inliers) return false;
-  float front_m = 0.0f;
-  if (!bar_front_height_test(cfg_, ws_, inliers, &front_m)) return false;
-  if (!estimate_center_line(cloud, cfg_, wall_, inliers, ws_.gap, line)) return false;
+LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
+                                               const LineModel& candidate, const IndexList& points,
+                                               IndexList& inliers, CenterLine* line, bool ends[2],
+                                               float end_t[2]) {
+  LineModel refined = candidate;
+  refine_line(cloud, cfg_, wall_, points, &refined, inliers);
+  const Cluster cluster = cluster_along_line(cloud, cfg_, refined, inliers, ws_.line_t_m.get());
+  if (cluster.count < cfg_.min_line_inliers) return LineVerdict::kTooFewPoints;
+  if (!estimate_center_line(cloud, cfg_, wall_, inliers, ws_, line)) {
+    return LineVerdict::kNoCenterLine;
+  }
+  if (!bar_front_height_test(cfg_, *line)) {
+    return LineVerdict::kWrongHeight;
+  }
   detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, ends, end_t);
   // The beam-length check of Algorithm 1 applies in full only when both
   // ends are seen; a bar that runs out of view need only be long enough
@@ -109,10 +114,13 @@ bool HandrailDetector::verify_candidate(const OrganizedCloud& cloud, const LineM
   const float length_m = cfg_.handrail.bar_length_m;
   const float extent = end_t[1] - end_t[0];
   if (ends[0] && ends[1]) {
-    return extent >= cfg_.beam_length_min_ratio * length_m &&
-           extent <= cfg_.beam_length_max_ratio * length_m;
+    const bool ok = extent >= cfg_.beam_length_min_ratio * length_m &&
+                    extent <= cfg_.beam_length_max_ratio * length_m;
+    return ok ? LineVerdict::kAccepted : LineVerdict::kBeamLength;
   }
-  return extent >= cfg_.min_visible_length_m && extent <= cfg_.beam_length_max_ratio * length_m;
+  if (extent < cfg_.min_visible_length_m) return LineVerdict::kTooShort;
+  if (extent > cfg_.beam_length_max_ratio * length_m) return LineVerdict::kTooLong;
+  return LineVerdict::kAccepted;
 }
 
 void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t start_us,
@@ -159,11 +167,16 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   for (std::uint32_t attempt = 0; attempt < cfg_.line_attempts; ++attempt) {
     LineModel candidates[2];
     estimate_handrail_candidates(cloud, cfg_, wall_, rng_, active, candidates);
+    ++out->counts.line_searches;
     bool removed = false;
     for (int k = 0; k < 2; ++k) {
       if (usable[k] || !candidates[k].valid) continue;
-      if (verify_candidate(cloud, candidates[k], active, ws_.line[k], &lines[k], ends[k],
-                           end_t[k])) {
+      const LineVerdict verdict =
+          verify_candidate(cloud, candidates[k], active, ws_.line[k], &lines[k], ends[k], end_t[k]);
+      if (attempt == 0 && out->counts.first_rejection == LineVerdict::kAccepted) {
+        out->counts.first_rejection = verdict;
+      }
+      if (verdict == LineVerdict::kAccepted) {
         usable[k] = true;
         chosen_line[k] = candidates[k];
       } else {

@@ -8,9 +8,6 @@
 namespace estimator {
 namespace {
 
-constexpr float kSliceLength_m = 0.02f;
-constexpr int kMaxSlices = 160;  // 3.2 m of bar; longer bars share the end slices
-
 Eigen::Vector3f point_of(const OrganizedCloud& cloud, std::int32_t i) {
   const CloudPoint& p = cloud.points[i];
   return {p.x_m, p.y_m, p.z_m};
@@ -33,13 +30,42 @@ Eigen::Matrix3f handrail_frame(const Eigen::Vector3f& wall_normal,
   return R;
 }
 
+namespace {
+
+// Mode of the distances from the wall, 2 mm bins lightly smoothed, over the
+// pixels in ws.band[0, n). NaN when there are none.
+float front_face_height(const DetectorConfig& cfg, const Workspace& ws, std::size_t n) {
+  constexpr int kBins = 64;
+  constexpr float kBin_m = 0.002f;
+  const float expected = cfg.handrail.bar_center_offset_m + 0.5f * cfg.handrail.bar_depth_m;
+  const float base = expected - 0.5f * kBins * kBin_m;
+  float hist[kBins] = {};
+  for (std::size_t k = 0; k < n; ++k) {
+    const int b = static_cast<int>((ws.signed_distance_m[ws.band[k]] - base) / kBin_m);
+    if (b >= 0 && b < kBins) hist[b] += 1.0f;
+  }
+  float best = 0.0f;
+  int peak = -1;
+  for (int b = 2; b < kBins - 2; ++b) {
+    const float v =
+        hist[b - 2] + 2.0f * hist[b - 1] + 3.0f * hist[b] + 2.0f * hist[b + 1] + hist[b + 2];
+    if (v > best) {
+      best = v;
+      peak = b;
+    }
+  }
+  return peak < 0 ? NAN : base + (static_cast<float>(peak) + 0.5f) * kBin_m;
+}
+
+}  // namespace
+
 bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                          const IndexList& inliers, const IndexList& silhouette, CenterLine* line) {
+                          const IndexList& inliers, Workspace& ws, CenterLine* line) {
   const std::size_t n = inliers.size();
   if (n < 3) return false;
   const Eigen::Vector3f& normal = wall.normal;
 
-  // Direction: principal axis of the points projected onto the wall.
+  // Direction: principal axis of the inliers projected onto the wall.
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (std::int32_t i : inliers) {
     const Eigen::Vector3f p = point_of(cloud, i);
@@ -61,47 +87,56 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   const Eigen::Vector3f across = R.col(1);
   const Eigen::Vector3f origin = mean.cast<float>();
 
-  // Across the bar: midpoint of its silhouette in each 2 cm slice along
-  // it. The silhouette is taken from every raised pixel near the line (the
-  // gap set), not only from those that passed the cross and side tests: a
-  // cable beside the bar can fail one side's probes for a whole edge row,
-  // which would pull a midpoint of the inliers alone toward the other side.
   float t_min = 0.0f, t_max = 0.0f;
   for (std::size_t k = 0; k < n; ++k) {
     const float t = (point_of(cloud, inliers[k]) - origin).dot(axis);
     t_min = k == 0 ? t : std::fmin(t_min, t);
     t_max = k == 0 ? t : std::fmax(t_max, t);
   }
-  const float half_reach = 0.5f * cfg.handrail.bar_width_m + cfg.line_inlier_m;
-  float lo[kMaxSlices], hi[kMaxSlices], mids[kMaxSlices];
-  std::uint16_t count[kMaxSlices] = {};
-  for (std::int32_t i : silhouette) {
-    const Eigen::Vector3f p = point_of(cloud, i);
-    const Eigen::Vector3f q = p - wall.signed_distance(p) * normal - origin;
+
+  // Every raised pixel (the gap set) in a generous band around the line:
+  // the cross test may have dropped a whole edge of the bar (a probe landing
+  // on a cable), so its inliers alone could favour one face.
+  const float band_m = 0.5f * cfg.handrail.bar_width_m + 0.02f;
+  ws.band.clear();
+  for (std::int32_t i : ws.gap) {
+    const Eigen::Vector3f q = point_of(cloud, i) - ws.signed_distance_m[i] * normal - origin;
     const float t = q.dot(axis);
-    const float b = q.dot(across);
-    if (t < t_min || t > t_max || std::fabs(b) > half_reach) continue;
-    int slice = static_cast<int>((t - t_min) / kSliceLength_m);
-    slice = std::clamp(slice, 0, kMaxSlices - 1);
-    lo[slice] = count[slice] ? std::fmin(lo[slice], b) : b;
-    hi[slice] = count[slice] ? std::fmax(hi[slice], b) : b;
-    if (count[slice] < 0xFFFF) ++count[slice];
+    if (t >= t_min && t <= t_max && std::fabs(q.dot(across)) <= band_m) ws.band.push(i);
   }
-  int n_mids = 0;
-  for (int s = 0; s < kMaxSlices; ++s) {
-    if (count[s] >= 3) mids[n_mids++] = 0.5f * (lo[s] + hi[s]);
+  const float front = front_face_height(cfg, ws, ws.band.size());
+  if (!std::isfinite(front)) return false;
+
+  // Across the bar: the pixels near the front face (the flat face of the ISS
+  // bar, the crown of a round one) lie symmetrically about the centre line
+  // from any viewing angle, and mixed (flying) pixels at the bar's edges
+  // rarely reach that height. Midpoint of their 2nd and 98th percentiles.
+  const float front_band_m = 0.3f * cfg.handrail.bar_depth_m;
+  std::size_t m = 0;
+  for (std::int32_t i : ws.band) {
+    if (ws.signed_distance_m[i] < front - front_band_m) continue;
+    const Eigen::Vector3f q = point_of(cloud, i) - ws.signed_distance_m[i] * normal - origin;
+    ws.values[m++] = q.dot(across);
   }
-  float offset_across = 0.0f;
-  if (n_mids > 0) {
-    std::nth_element(mids, mids + n_mids / 2, mids + n_mids);
-    offset_across = mids[n_mids / 2];
-  }
+  if (m < 3) return false;
+  float* v = ws.values.get();
+  const std::size_t lo = m * 2 / 100, hi = m - 1 - m * 2 / 100;
+  std::nth_element(v, v + lo, v + m);
+  const float b_lo = v[lo];
+  std::nth_element(v, v + hi, v + m);
+  const float offset_across = 0.5f * (b_lo + v[hi]);
 
   line->axis = axis;
   line->point = origin + offset_across * across + cfg.handrail.bar_center_offset_m * normal;
   line->t_min_m = t_min;
   line->t_max_m = t_max;
+  line->front_height_m = front;
   return true;
+}
+
+bool bar_front_height_test(const DetectorConfig& cfg, const CenterLine& line) {
+  const float expected = cfg.handrail.bar_center_offset_m + 0.5f * cfg.handrail.bar_depth_m;
+  return std::fabs(line.front_height_m - expected) < cfg.front_height_tolerance_m;
 }
 
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
@@ -159,27 +194,48 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     const int max_steps =
         std::min(400, static_cast<int>(std::ceil(std::fmax(scale.px_x(cfg.end_search_m, z),
                                                            scale.px_y(cfg.end_search_m, z)))));
+    // Each step looks at a short band across the walk (+-2 px), so a walk
+    // direction a few degrees off does not slide off the bar's side and
+    // mistake the wall beside it for the wall past its end.
+    const Eigen::Vector2f side(-step.y(), step.x());
     int invalid_run = 0;
     float t_bar = t_inner;
     for (int k = 1; k <= max_steps; ++k) {
-      const int col = static_cast<int>(std::lround(start.x() + step.x() * k));
-      const int row = static_cast<int>(std::lround(start.y() + step.y() * k));
-      if (col < 0 || row < 0 || col >= w || row >= static_cast<int>(cloud.height)) break;
-      const std::int32_t i = row * w + col;
-      if (!(ws.flags[i] & kFlagValid)) {
+      bool any_valid = false, on_bar = false, in_front = false, all_wall = true;
+      for (int j = -2; j <= 2; ++j) {
+        const Eigen::Vector2f px =
+            start + step * static_cast<float>(k) + side * static_cast<float>(j);
+        const int col = static_cast<int>(std::lround(px.x()));
+        const int row = static_cast<int>(std::lround(px.y()));
+        if (col < 0 || row < 0 || col >= w || row >= static_cast<int>(cloud.height)) {
+          all_wall = false;
+          in_front = true;  // off the image: the end is not in view
+          continue;
+        }
+        const std::int32_t i = row * w + col;
+        if (!(ws.flags[i] & kFlagValid)) {
+          all_wall = false;
+          continue;
+        }
+        any_valid = true;
+        const float s = ws.signed_distance_m[i];
+        if (s >= cfg.wall_tolerance_m) all_wall = false;
+        if (s > hi + 0.02f) in_front = true;
+        if (s >= lo && s <= hi + 0.02f) {
+          on_bar = true;
+          const float t = (point_of(cloud, i) - line.point).dot(line.axis);
+          t_bar = end == 0 ? std::fmin(t_bar, t) : std::fmax(t_bar, t);
+        }
+      }
+      if (in_front) break;  // something hides the end, or the image ends
+      if (!any_valid) {
         if (++invalid_run > 3) break;
         continue;
       }
       invalid_run = 0;
-      const float s = ws.signed_distance_m[i];
-      if (s < cfg.wall_tolerance_m) {
+      if (all_wall && !on_bar) {
         end_seen[end] = true;
         break;
-      }
-      if (s > hi + 0.02f) break;  // something in front hides the end
-      if (s >= lo) {
-        const float t = (point_of(cloud, i) - line.point).dot(line.axis);
-        t_bar = end == 0 ? std::fmin(t_bar, t) : std::fmax(t_bar, t);
       }
     }
     end_t_m[end] = t_bar;

@@ -1,5 +1,6 @@
 #include "estimator/line_estimation.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -76,6 +77,30 @@ void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg
   }
 }
 
+void refine_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                 const IndexList& points, LineModel* line, IndexList& inliers) {
+  for (int pass = 0; pass < 2; ++pass) {
+    collect_line_inliers(cloud, cfg, wall, *line, points, inliers);
+    if (inliers.size() < 3) return;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::int32_t i : inliers) mean += on_wall(cloud, wall, i).cast<double>();
+    mean /= static_cast<double>(inliers.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::int32_t i : inliers) {
+      const Eigen::Vector3d q = on_wall(cloud, wall, i).cast<double>() - mean;
+      cov.noalias() += q * q.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(cov);
+    const Eigen::Vector3f direction = solver.eigenvectors().col(2).cast<float>();
+    if (!direction.allFinite()) return;
+    line->point = mean.cast<float>();
+    line->direction = direction.normalized();
+    line->psi_rad = line_angle_psi(line->direction);
+  }
+  collect_line_inliers(cloud, cfg, wall, *line, points, inliers);
+}
+
 void remove_line_points(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
                         const LineModel& line, IndexList& points) {
   std::size_t kept = 0;
@@ -118,35 +143,6 @@ Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cf
   best.t_min_m = t_m[inliers[0]];
   best.t_max_m = t_m[inliers[best_count - 1]];
   return best;
-}
-
-bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const IndexList& inliers,
-                           float* front_m) {
-  // Histogram of the inliers' distance from the wall, 2 mm bins, lightly
-  // smoothed. The bar's front face (flat on the ISS bar, the crown of a
-  // round one) is the densest height; a side face seen at an angle spreads
-  // thinly over the bar's depth and does not move the peak.
-  constexpr int kBins = 64;
-  constexpr float kBin_m = 0.002f;
-  const float expected = cfg.handrail.bar_center_offset_m + 0.5f * cfg.handrail.bar_depth_m;
-  const float base = expected - 0.5f * kBins * kBin_m;
-  float hist[kBins] = {};
-  for (std::int32_t i : inliers) {
-    const int b = static_cast<int>((ws.signed_distance_m[i] - base) / kBin_m);
-    if (b >= 0 && b < kBins) hist[b] += 1.0f;
-  }
-  float best = -1.0f;
-  int peak = 0;
-  for (int b = 2; b < kBins - 2; ++b) {
-    const float v =
-        hist[b - 2] + 2.0f * hist[b - 1] + 3.0f * hist[b] + 2.0f * hist[b + 1] + hist[b + 2];
-    if (v > best) {
-      best = v;
-      peak = b;
-    }
-  }
-  *front_m = base + (static_cast<float>(peak) + 0.5f) * kBin_m;
-  return best > 0.0f && std::fabs(*front_m - expected) < cfg.front_height_tolerance_m;
 }
 
 int select_by_gripper_angle(const DetectorConfig& cfg, const LineModel candidates[2],

@@ -173,9 +173,18 @@ void test_candidates_cluster_and_select(void**) {
   const Cluster c = cluster_along_line(cloud, cfg, cand[k], ws.line[0], ws.line_t_m.get());
   assert_near(c.length_m(), 0.3, 0.02);
   assert_int_equal(c.count, ws.line[0].size());
-  float front = 0.0f;
-  assert_true(bar_front_height_test(cfg, ws, ws.line[0], &front));
-  assert_near(front, kOffset + 0.0175, 0.003);
+  CenterLine centre;
+  assert_true(estimate_center_line(cloud, cfg, wall, ws.line[0], ws, &centre));
+  assert_near(centre.point.x(), 0.0, 0.002);
+  assert_near(wall.signed_distance(centre.point), kOffset, 1e-4);
+  // Front face of the round bar: its crown, 10 cm off the wall (the mode of
+  // a curved face reads a little low).
+  assert_near(centre.front_height_m, kOffset + 0.0175, 0.005);
+  assert_true(bar_front_height_test(cfg, centre));
+  // The same bar read as the ISS bar (front at 7.85 cm) is at the wrong height.
+  DetectorConfig iss = cfg;
+  iss.handrail = iss_handrail(0.3f);
+  assert_false(bar_front_height_test(iss, centre));
 
   // Algorithm 1's selection by the gripper angle.
   LineModel two[2];

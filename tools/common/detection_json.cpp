@@ -55,6 +55,9 @@ std::string detection_to_json(const std::string& frame, const estimator::Handrai
     s += "],\"inliers\":" + std::to_string(d.inliers);
   } else {
     s += ",\"reason\":\"" + std::string(to_string(d.status)) + "\"";
+    if (d.status == estimator::DetectStatus::kNoLine) {
+      s += ",\"first_line\":\"" + std::string(to_string(d.counts.first_rejection)) + "\"";
+    }
   }
   s += ",\"time_ms\":" + std::string(time_ms) + "}";
   return s;

@@ -51,9 +51,9 @@ class HandrailDetector {
   void select_valid_points(const OrganizedCloud& cloud);
   void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
   // Cluster, front height, centre line, ends and length of one line.
-  bool verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
-                        const IndexList& points, IndexList& inliers, CenterLine* line, bool ends[2],
-                        float end_t[2]);
+  LineVerdict verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
+                               const IndexList& points, IndexList& inliers, CenterLine* line,
+                               bool ends[2], float end_t[2]);
   void run_basic(const OrganizedCloud& cloud, HandrailDetection* out);
   void fill_pose(const Eigen::Vector3f& p_cam_center, const Eigen::Matrix3f& R_cam_handrail,
                  HandrailDetection* out) const;

@@ -18,6 +18,7 @@ struct CenterLine {
   Eigen::Vector3f axis = Eigen::Vector3f::Zero();
   float t_min_m = 0.0f;  // visible extent of the inliers along the axis
   float t_max_m = 0.0f;
+  float front_height_m = 0.0f;  // the bar's front face, from the wall
 };
 
 // Eq. 5: x = wall normal, z = line direction projected onto the wall,
@@ -27,13 +28,19 @@ Eigen::Matrix3f handrail_frame(const Eigen::Vector3f& wall_normal,
                                const Eigen::Vector3f& line_direction);
 
 // Fits the centre line to the line inliers: direction by least squares in
-// the wall plane, position across the bar from the midpoints of its visible
-// silhouette (the raised pixels of `silhouette` near the line: unbiased for
-// round and rounded-rectangle bars seen at an angle, since both edges of the
-// silhouette are the bar's extremes across), height from the wall from the
-// configured geometry.
+// the wall plane; the bar's front-face height as the mode of the distances
+// from the wall of every raised pixel (ws.gap) near the line; position
+// across the bar as the middle of the pixels near that front face (placed
+// symmetrically about the centre for round and rounded-rectangle bars seen
+// from any angle); height from the wall from the configured geometry. Uses
+// ws.band and ws.values.
 bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                          const IndexList& inliers, const IndexList& silhouette, CenterLine* line);
+                          const IndexList& inliers, Workspace& ws, CenterLine* line);
+
+// The bar's front face must stand where the handrail's geometry puts it
+// (offset + depth / 2 from the wall, within the tolerance): rejects cables of
+// handrail width at other heights.
+bool bar_front_height_test(const DetectorConfig& cfg, const CenterLine& line);
 
 // Walks the image past each extreme inlier along the bar. An end is seen
 // when the walk leaves the bar and meets the wall; it is not seen when the

@@ -34,6 +34,13 @@ void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorCon
 void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
                           const LineModel& line, const IndexList& points, IndexList& out);
 
+// Least-squares refit of a RANSAC line: collects its inliers among
+// `points`, fits their principal axis in the wall plane, and repeats, so a
+// line from two close samples does not keep their angle error. `inliers`
+// holds the final inliers.
+void refine_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
+                 const IndexList& points, LineModel* line, IndexList& inliers);
+
 // Drops the points within the inlier distance of the line, so that the next
 // search finds the next line (used when a line fails verification: a cable
 // with more support than the handrail must not hide it).
@@ -56,12 +63,5 @@ Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cf
 // Returns -1 when neither is usable.
 int select_by_gripper_angle(const DetectorConfig& cfg, const LineModel candidates[2],
                             const bool usable[2]);
-
-// The bar's front face must stand where the handrail's geometry puts it
-// (offset + depth / 2 from the wall, within the tolerance). Its height is
-// the mode of the inliers' distances from the wall. Rejects cables that
-// pass the width test at the wrong height. *front_m receives the estimate.
-bool bar_front_height_test(const DetectorConfig& cfg, const Workspace& ws, const IndexList& inliers,
-                           float* front_m);
 
 }  // namespace estimator

@@ -25,6 +25,18 @@ enum class DetectStatus : std::uint8_t {
 };
 const char* to_string(DetectStatus status);
 
+// Why the verification of a line candidate rejected it.
+enum class LineVerdict : std::uint8_t {
+  kAccepted,
+  kTooFewPoints,  // its cluster is smaller than min_line_inliers
+  kWrongHeight,   // its front face is not where the bar's is
+  kNoCenterLine,  // degenerate points
+  kTooShort,      // visible part shorter than min_visible_length_m
+  kTooLong,       // longer than b_H,max
+  kBeamLength,    // both ends seen, length outside b_H,min..b_H,max
+};
+const char* to_string(LineVerdict verdict);
+
 // A wall: n . p + d = 0 with |n| = 1 and the camera on the positive side
 // (d > 0), so signed_distance > 0 means "in front of the wall".
 struct Plane {
@@ -41,6 +53,8 @@ struct StageCounts {
   std::uint32_t cross = 0;
   std::uint32_t side = 0;
   std::uint32_t line = 0;
+  std::uint32_t line_searches = 0;                       // Algorithm 2 runs
+  LineVerdict first_rejection = LineVerdict::kAccepted;  // of the best-supported line
 };
 
 struct HandrailDetection {

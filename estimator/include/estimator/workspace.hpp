@@ -63,7 +63,8 @@ struct Workspace {
   IndexList cross;
   IndexList side;
   IndexList line[2];
-  IndexList scratch;
+  IndexList scratch;                // the line search's remaining points
+  IndexList band;                   // raised pixels around a candidate line
   std::unique_ptr<float[]> values;  // per-point scratch for medians
 
   std::size_t bytes() const;
