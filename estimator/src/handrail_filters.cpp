@@ -26,14 +26,15 @@ float clamp_noise(float noise_m) {
 }
 
 // Probes for the wall `offset_px` pixels away along (drow, dcol). A probe
-// that lands on an invalid pixel (a dark or flying pixel at the bar's edge)
-// moves back toward the bar, but never inside half the offset: past that it
-// could land on the bar itself.
+// that lands outside the image (a bar near the image's edge) or on an
+// invalid pixel (a dark or flying pixel at the bar's edge) moves back toward
+// the bar and judges the first valid pixel, but never comes closer than half
+// the offset: nearer, it could land on the bar itself.
 bool probe_on_wall(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, int drow, int dcol,
                    int offset_px, float wall_tolerance_m) {
   for (int k = offset_px; k >= (offset_px + 1) / 2; --k) {
     const int r = q.row + drow * k, c = q.col + dcol * k;
-    if (!inside(cloud, r, c)) return false;
+    if (!inside(cloud, r, c)) continue;
     const std::int32_t i = r * static_cast<int>(cloud.width) + c;
     if (!(ws.flags[i] & kFlagValid)) continue;
     return std::fabs(ws.signed_distance_m[i]) < wall_tolerance_m;
