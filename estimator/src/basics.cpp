@@ -51,6 +51,7 @@ const char* validate(const DetectorConfig& c) {
   if (gap_min_m(c) <= c.wall_tolerance_m) return "wall_tolerance_m";
   if (!(c.side_width_min_ratio > 0.0f && c.side_width_max_ratio > c.side_width_min_ratio))
     return "side_width_max_ratio";
+  if (!(c.run_peak_tolerance_m > 0.0f)) return "run_peak_tolerance_m";
   if (c.line_iterations == 0 || c.line_iterations > 10000) return "line_iterations";
   if (!(c.line_inlier_m > 0.0f)) return "line_inlier_m";
   if (c.line_attempts == 0 || c.line_attempts > 32) return "line_attempts";

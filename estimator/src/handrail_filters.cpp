@@ -42,27 +42,37 @@ bool probe_on_wall(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, in
   return false;
 }
 
-// Width of the raised run through q along (drow, dcol): the 3-D distance
-// between its two outermost raised pixels, plus one pixel's footprint since
-// each outermost pixel centre lies half a pixel inside the silhouette.
-float raised_run_width_m(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, int drow,
-                         int dcol, int max_steps, float raised_min_m, float footprint_m) {
+struct RaisedRun {
+  float width_m = -1.0f;  // < 0: the run leaves the image, width unknown
+  float peak_m = 0.0f;    // its highest point's distance from the wall
+};
+
+// The raised run through q along (drow, dcol): the 3-D distance between its
+// two outermost raised pixels, plus one pixel's footprint since each
+// outermost pixel centre lies half a pixel inside the silhouette; and its
+// highest point above the wall.
+RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, int drow,
+                             int dcol, int max_steps, float raised_min_m, float footprint_m) {
   const int w = static_cast<int>(cloud.width);
+  RaisedRun run;
+  run.peak_m = ws.signed_distance_m[q.row * w + q.col];
   Pixel ends[2] = {q, q};
   for (int side = 0; side < 2; ++side) {
     const int sign = side == 0 ? -1 : 1;
     for (int k = 1; k <= max_steps; ++k) {
       const int r = q.row + sign * drow * k, c = q.col + sign * dcol * k;
-      if (!inside(cloud, r, c)) return -1.0f;  // runs off the image: unknown
+      if (!inside(cloud, r, c)) return run;
       const std::int32_t i = r * w + c;
       if (!(ws.flags[i] & kFlagValid) || ws.signed_distance_m[i] < raised_min_m) break;
+      run.peak_m = std::fmax(run.peak_m, ws.signed_distance_m[i]);
       ends[side] = {r, c};
     }
   }
   const CloudPoint& a = cloud.at(ends[0].row, ends[0].col);
   const CloudPoint& b = cloud.at(ends[1].row, ends[1].col);
   const float dx = a.x_m - b.x_m, dy = a.y_m - b.y_m, dz = a.z_m - b.z_m;
-  return std::sqrt(dx * dx + dy * dy + dz * dz) + footprint_m;
+  run.width_m = std::sqrt(dx * dx + dy * dy + dz * dz) + footprint_m;
+  return run;
 }
 
 }  // namespace
@@ -120,20 +130,28 @@ void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
   const float width_min = cfg.side_width_min_ratio * h.bar_width_m;
   const float width_max = cfg.side_width_max_ratio * std::fmax(h.bar_width_m, h.bar_depth_m);
   const float raised_min = gap_min_m(cfg);
+  const float front = h.bar_center_offset_m + 0.5f * h.bar_depth_m;
   ws.side.clear();
   for (std::int32_t i : ws.cross) {
     const Pixel q = pixel_of(cloud, i);
     const float z = cloud.points[i].z_m;
+    // The run's peak is the bar's front face (or a round bar's crown); a
+    // cable or pipe of similar width at another height fails here. Noise
+    // lifts the highest of a few samples, hence the pixel's sigma.
+    const float peak_tolerance =
+        cfg.run_peak_tolerance_m + 2.0f * clamp_noise(cloud.points[i].noise_m);
+    auto passes = [&](const RaisedRun& run) {
+      return run.width_m > width_min && run.width_m < width_max &&
+             std::fabs(run.peak_m - front) < peak_tolerance;
+    };
     bool pass = false;
     if (ws.flags[i] & kFlagCrossX) {
       const int steps = static_cast<int>(std::ceil(scale.px_x(width_max, z))) + 1;
-      const float w = raised_run_width_m(cloud, ws, q, 0, 1, steps, raised_min, z / scale.fx_px);
-      pass = w > width_min && w < width_max;
+      pass = passes(measure_raised_run(cloud, ws, q, 0, 1, steps, raised_min, z / scale.fx_px));
     }
     if (!pass && (ws.flags[i] & kFlagCrossY)) {
       const int steps = static_cast<int>(std::ceil(scale.px_y(width_max, z))) + 1;
-      const float w = raised_run_width_m(cloud, ws, q, 1, 0, steps, raised_min, z / scale.fy_px);
-      pass = w > width_min && w < width_max;
+      pass = passes(measure_raised_run(cloud, ws, q, 1, 0, steps, raised_min, z / scale.fy_px));
     }
     if (pass) {
       ws.flags[i] |= kFlagSide;

@@ -30,6 +30,7 @@ constexpr FloatKey kFloatKeys[] = {
     {"wall_tolerance_m", &estimator::DetectorConfig::wall_tolerance_m},
     {"side_width_min_ratio", &estimator::DetectorConfig::side_width_min_ratio},
     {"side_width_max_ratio", &estimator::DetectorConfig::side_width_max_ratio},
+    {"run_peak_tolerance_m", &estimator::DetectorConfig::run_peak_tolerance_m},
     {"line_inlier_m", &estimator::DetectorConfig::line_inlier_m},
     {"cluster_gap_m", &estimator::DetectorConfig::cluster_gap_m},
     {"beam_length_min_ratio", &estimator::DetectorConfig::beam_length_min_ratio},

@@ -45,11 +45,14 @@ struct DetectorConfig {
   // Side width test (eq. 4) on the raised span through the pixel.
   float side_width_min_ratio = 0.6f;  // x bar width
   float side_width_max_ratio = 1.6f;  // x max(bar width, bar depth)
+  // ... and the run's highest point must be the bar's front face, within
+  // this plus twice the pixel's noise.
+  float run_peak_tolerance_m = 0.012f;
 
   // Handrail candidates (Algorithm 2) and clustering (Algorithm 1).
   std::uint32_t line_iterations = 80;
   std::uint32_t line_score_samples = 600;
-  std::uint32_t line_attempts = 4;  // searches after rejected lines
+  std::uint32_t line_attempts = 6;  // searches after rejected lines
   float line_inlier_m = 0.015f;
   float cluster_gap_m = 0.05f;              // d_r
   float beam_length_min_ratio = 0.75f;      // b_H,min / b_H when both ends seen

@@ -21,8 +21,9 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
                       const PixelScale& scale, Workspace& ws);
 
 // Side width test (eq. 4): along each direction that passed the cross test,
-// the raised run through the pixel must be as wide as the bar. ws.cross ->
-// ws.side.
+// the raised run through the pixel must be as wide as the bar, and (our
+// addition) its highest point must be at the bar's front-face height.
+// ws.cross -> ws.side.
 void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
                      const PixelScale& scale, Workspace& ws);
 
