@@ -82,9 +82,9 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   solver.computeDirect(cov);
   const Eigen::Vector3f direction = solver.eigenvectors().col(2).cast<float>();
   if (!direction.allFinite()) return false;
-  const Eigen::Matrix3f R = handrail_frame(normal, direction);
-  const Eigen::Vector3f axis = R.col(2);
-  const Eigen::Vector3f across = R.col(1);
+  Eigen::Matrix3f R = handrail_frame(normal, direction);
+  Eigen::Vector3f axis = R.col(2);
+  Eigen::Vector3f across = R.col(1);
   const Eigen::Vector3f origin = mean.cast<float>();
 
   float t_min = 0.0f, t_max = 0.0f;
@@ -107,24 +107,52 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   const float front = front_face_height(cfg, ws, ws.band.size());
   if (!std::isfinite(front)) return false;
 
-  // Across the bar: the pixels near the front face (the flat face of the ISS
-  // bar, the crown of a round one) lie symmetrically about the centre line
-  // from any viewing angle, and mixed (flying) pixels at the bar's edges
-  // rarely reach that height. Midpoint of their 2nd and 98th percentiles.
+  // The pixels near the front face (the flat face of the ISS bar, the crown
+  // of a round one) are the cleanest sample of the bar: they lie
+  // symmetrically about its centre line from any viewing angle, and mixed
+  // (flying) pixels at the bar's edges rarely reach that height. Refit the
+  // direction to them, then take the middle of their spread across the bar
+  // (2nd to 98th percentile).
   const float front_band_m = 0.3f * cfg.handrail.bar_depth_m;
+  Eigen::Vector3d band_mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d band_cov = Eigen::Matrix3d::Zero();
   std::size_t m = 0;
+  for (std::int32_t i : ws.band) {
+    if (ws.signed_distance_m[i] < front - front_band_m) continue;
+    const Eigen::Vector3d q =
+        (point_of(cloud, i) - ws.signed_distance_m[i] * normal).cast<double>();
+    band_mean += q;
+    band_cov.noalias() += q * q.transpose();
+    ++m;
+  }
+  if (m < 3) return false;
+  band_mean /= static_cast<double>(m);
+  band_cov = band_cov / static_cast<double>(m) - band_mean * band_mean.transpose();
+  solver.computeDirect(band_cov);
+  const Eigen::Vector3f band_direction = solver.eigenvectors().col(2).cast<float>();
+  if (band_direction.allFinite()) {
+    R = handrail_frame(normal, band_direction);
+    axis = R.col(2);
+    across = R.col(1);
+  }
+  m = 0;
   for (std::int32_t i : ws.band) {
     if (ws.signed_distance_m[i] < front - front_band_m) continue;
     const Eigen::Vector3f q = point_of(cloud, i) - ws.signed_distance_m[i] * normal - origin;
     ws.values[m++] = q.dot(across);
   }
-  if (m < 3) return false;
   float* v = ws.values.get();
   const std::size_t lo = m * 2 / 100, hi = m - 1 - m * 2 / 100;
   std::nth_element(v, v + lo, v + m);
   const float b_lo = v[lo];
   std::nth_element(v, v + hi, v + m);
   const float offset_across = 0.5f * (b_lo + v[hi]);
+  // The inliers' extent along the refined axis.
+  for (std::size_t k = 0; k < n; ++k) {
+    const float t = (point_of(cloud, inliers[k]) - origin).dot(axis);
+    t_min = k == 0 ? t : std::fmin(t_min, t);
+    t_max = k == 0 ? t : std::fmax(t_max, t);
+  }
 
   line->axis = axis;
   line->point = origin + offset_across * across + cfg.handrail.bar_center_offset_m * normal;
