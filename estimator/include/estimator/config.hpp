@@ -58,7 +58,7 @@ struct DetectorConfig {
   float beam_length_min_ratio = 0.75f;      // b_H,min / b_H when both ends seen
   float beam_length_max_ratio = 1.25f;      // b_H,max / b_H
   float min_visible_length_m = 0.08f;       // shorter segments are clutter
-  float front_height_tolerance_m = 0.006f;  // bar front face vs geometry
+  float front_height_tolerance_m = 0.004f;  // bar front face vs geometry
   std::uint32_t min_line_inliers = 25;
 
   // Selection by the gripper's angle psi_p: 0 = handrails along image y.
