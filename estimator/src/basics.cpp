@@ -9,11 +9,6 @@
 
 namespace estimator {
 
-bool is_valid_point(const CloudPoint& p) {
-  return p.confidence != 0 && std::isfinite(p.x_m) && std::isfinite(p.y_m) &&
-         std::isfinite(p.z_m) && p.z_m > 0.0f;
-}
-
 HandrailGeometry paper_round_handrail(float bar_length_m) {
   // Legs l_H = 6.5 cm, bar b_D = 3.5 cm: centre line at l_H + b_D / 2.
   return {0.035f, 0.035f, 0.065f + 0.0175f, bar_length_m};
@@ -132,10 +127,12 @@ Workspace::Workspace(std::size_t n)
       line{IndexList(n), IndexList(n)},
       scratch(n),
       band(n),
-      values(new float[n]) {}
+      values(new float[n]),
+      wall_u_m(new float[n]),
+      wall_v_m(new float[n]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 3 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 8);
+  return max_pixels * (sizeof(float) * 6 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 8);
 }
 
 }  // namespace estimator

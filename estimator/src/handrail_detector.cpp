@@ -33,15 +33,14 @@ bool HandrailDetector::over_budget(std::int64_t start_us) const {
 
 void HandrailDetector::select_valid_points(const OrganizedCloud& cloud) {
   const std::size_t n = cloud.size();
-  std::memset(ws_.flags.get(), 0, n);
+  const float lo = cfg_.min_range_m, hi = cfg_.max_range_m;
   ws_.valid.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const CloudPoint& p = cloud.points[i];
+    const bool valid = is_valid_point(p) && p.z_m >= lo && p.z_m <= hi;
+    ws_.flags[i] = valid ? kFlagValid : 0;
     ws_.signed_distance_m[i] = NAN;
-    if (is_valid_point(p) && p.z_m >= cfg_.min_range_m && p.z_m <= cfg_.max_range_m) {
-      ws_.flags[i] = kFlagValid;
-      ws_.valid.push(static_cast<std::int32_t>(i));
-    }
+    if (valid) ws_.valid.push(static_cast<std::int32_t>(i));
   }
 }
 
@@ -98,7 +97,7 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
                                                IndexList& inliers, CenterLine* line, bool ends[2],
                                                float end_t[2]) {
   LineModel refined = candidate;
-  refine_line(cloud, cfg_, wall_, points, &refined, inliers);
+  refine_line(cloud, cfg_, wall_, ws_, points, &refined, inliers);
   const Cluster cluster = cluster_along_line(cloud, cfg_, refined, inliers, ws_.line_t_m.get());
   if (cluster.count < cfg_.min_line_inliers) return LineVerdict::kTooFewPoints;
   if (!estimate_center_line(cloud, cfg_, wall_, inliers, ws_, line)) {
@@ -156,6 +155,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   // Algorithm 2, repeated: a slot's best line that fails verification is
   // removed and the search runs again on what is left, a bounded number
   // of times.
+  project_to_wall(cloud, wall_, ws_);
   IndexList& active = ws_.scratch;
   active.clear();
   for (std::int32_t i : ws_.side) active.push(i);
@@ -166,7 +166,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   float end_t[2][2] = {};
   for (std::uint32_t attempt = 0; attempt < cfg_.line_attempts; ++attempt) {
     LineModel candidates[2];
-    estimate_handrail_candidates(cloud, cfg_, wall_, rng_, active, candidates);
+    estimate_handrail_candidates(cloud, cfg_, wall_, rng_, ws_, active, candidates);
     ++out->counts.line_searches;
     bool removed = false;
     for (int k = 0; k < 2; ++k) {
@@ -180,12 +180,18 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
         usable[k] = true;
         chosen_line[k] = candidates[k];
       } else {
-        remove_line_points(cloud, cfg_, wall_, candidates[k], active);
+        remove_line_points(cloud, cfg_, wall_, ws_, candidates[k], active);
         removed = true;
       }
     }
-    if ((usable[0] && usable[1]) || !removed || active.size() < cfg_.min_line_inliers ||
-        over_budget(start_us)) {
+    // The slots are near perpendicular, so an accepted line within 45 deg
+    // of the gripper angle wins Algorithm 1's selection whatever the other
+    // slot would find: no need to keep searching for it.
+    bool settled = usable[0] && usable[1];
+    for (int k = 0; k < 2; ++k) {
+      settled |= usable[k] && std::fabs(chosen_line[k].psi_rad - cfg_.gripper_angle_rad) <= 0.7854f;
+    }
+    if (settled || !removed || active.size() < cfg_.min_line_inliers || over_budget(start_us)) {
       break;
     }
   }

@@ -219,16 +219,20 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     Eigen::Vector2f step = dir_px;
     if (outward.dot(step) < 0.0f) step = -step;
     const float z = static_cast<float>(rz / m);
-    const int max_steps =
-        std::min(400, static_cast<int>(std::ceil(std::fmax(scale.px_x(cfg.end_search_m, z),
-                                                           scale.px_y(cfg.end_search_m, z)))));
+    // The walk follows the bar as long as it stays on it (a gap in the
+    // inliers, where a cable crossing behind the bar failed the cross test,
+    // is no end), and looks at most end_search_m past its last bar pixel.
+    // Bounded by the image's size.
+    const int max_past_bar = static_cast<int>(
+        std::ceil(std::fmax(scale.px_x(cfg.end_search_m, z), scale.px_y(cfg.end_search_m, z))));
+    const int max_steps = static_cast<int>(cloud.width + cloud.height);
     // Each step looks at a short band across the walk (+-2 px), so a walk
     // direction a few degrees off does not slide off the bar's side and
     // mistake the wall beside it for the wall past its end.
     const Eigen::Vector2f side(-step.y(), step.x());
-    int invalid_run = 0;
+    int invalid_run = 0, past_bar = 0;
     float t_bar = t_inner;
-    for (int k = 1; k <= max_steps; ++k) {
+    for (int k = 1; k <= max_steps && past_bar <= max_past_bar; ++k) {
       bool any_valid = false, on_bar = false, in_front = false, all_wall = true;
       for (int j = -2; j <= 2; ++j) {
         const Eigen::Vector2f px =
@@ -265,6 +269,7 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
         end_seen[end] = true;
         break;
       }
+      past_bar = on_bar ? 0 : past_bar + 1;
     }
     end_t_m[end] = t_bar;
   }

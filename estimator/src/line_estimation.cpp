@@ -11,17 +11,37 @@ namespace {
 
 constexpr float kHalfPi = 1.57079632679f;
 
-// The point moved onto the wall along the normal: depth noise along the view
-// ray then no longer scatters points across the line.
-Eigen::Vector3f on_wall(const OrganizedCloud& cloud, const Plane& wall, std::int32_t i) {
-  const CloudPoint& p = cloud.points[i];
-  const Eigen::Vector3f q(p.x_m, p.y_m, p.z_m);
-  return q - wall.signed_distance(q) * wall.normal;
+// An orthonormal basis of the wall plane: points projected onto the wall
+// along its normal become 2-D, and every line test a multiply-add.
+struct WallBasis {
+  Eigen::Vector3f e1, e2, n;
+  float d;
+  explicit WallBasis(const Plane& wall) : n(wall.normal), d(wall.d) {
+    const Eigen::Vector3f helper =
+        std::fabs(n.x()) < 0.9f ? Eigen::Vector3f::UnitX() : Eigen::Vector3f::UnitY();
+    e1 = n.cross(helper).normalized();
+    e2 = n.cross(e1);
+  }
+  Eigen::Vector3f to_3d(float u, float v) const { return u * e1 + v * e2 - d * n; }
+  Eigen::Vector3f direction_3d(float du, float dv) const { return du * e1 + dv * e2; }
+};
+
+// A line in wall coordinates: a point and a unit direction.
+struct Line2 {
+  float pu, pv, du, dv;
+  float distance(float u, float v) const { return std::fabs((u - pu) * dv - (v - pv) * du); }
+};
+
+Line2 to_line2(const WallBasis& basis, const LineModel& line) {
+  const Eigen::Vector3f dir = line.direction - line.direction.dot(basis.n) * basis.n;
+  const float du = dir.dot(basis.e1), dv = dir.dot(basis.e2);
+  const float len = std::sqrt(du * du + dv * dv);
+  return {line.point.dot(basis.e1), line.point.dot(basis.e2), du / len, dv / len};
 }
 
-float distance_to_line(const Eigen::Vector3f& q, const Eigen::Vector3f& point,
-                       const Eigen::Vector3f& direction) {
-  return (q - point).cross(direction).norm();
+LineModel to_model(const WallBasis& basis, const Line2& l, std::uint32_t score) {
+  const Eigen::Vector3f dir = basis.direction_3d(l.du, l.dv);
+  return {true, basis.to_3d(l.pu, l.pv), dir, line_angle_psi(dir), score};
 }
 
 }  // namespace
@@ -30,86 +50,111 @@ float line_angle_psi(const Eigen::Vector3f& direction) {
   return std::atan2(std::fabs(direction.x()), std::fabs(direction.y()));
 }
 
+void project_to_wall(const OrganizedCloud& cloud, const Plane& wall, Workspace& ws) {
+  const WallBasis basis(wall);
+  for (std::int32_t i : ws.side) {
+    const CloudPoint& p = cloud.points[i];
+    const Eigen::Vector3f q(p.x_m, p.y_m, p.z_m);
+    ws.wall_u_m[i] = q.dot(basis.e1);
+    ws.wall_v_m[i] = q.dot(basis.e2);
+  }
+}
+
 void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                  const Plane& wall, Random& rng, const IndexList& pts,
-                                  LineModel candidates[2]) {
+                                  const Plane& wall, Random& rng, const Workspace& ws,
+                                  const IndexList& pts, LineModel candidates[2]) {
+  (void)cloud;
   candidates[0] = LineModel{};
   candidates[1] = LineModel{};
   const std::size_t n = pts.size();
   if (n < 2) return;
+  const WallBasis basis(wall);
+  const float* u = ws.wall_u_m.get();
+  const float* v = ws.wall_v_m.get();
   const std::size_t step = n > cfg.line_score_samples ? n / cfg.line_score_samples : 1;
   const std::uint32_t n32 = static_cast<std::uint32_t>(n);
   // Two samples closer than this give a poorly defined direction.
   const float min_separation_m = 2.0f * cfg.handrail.bar_width_m;
   float psi[2] = {0.0f, 0.0f};
+  Line2 best[2] = {};
 
   for (std::uint32_t it = 0; it < cfg.line_iterations; ++it) {
-    const Eigen::Vector3f p1 = on_wall(cloud, wall, pts[rng.below(n32)]);
-    const Eigen::Vector3f p2 = on_wall(cloud, wall, pts[rng.below(n32)]);
-    const Eigen::Vector3f delta = p1 - p2;
-    const float separation = delta.norm();
+    const std::int32_t a = pts[rng.below(n32)], b = pts[rng.below(n32)];
+    const float du = u[a] - u[b], dv = v[a] - v[b];
+    const float separation = std::sqrt(du * du + dv * dv);
     if (separation < min_separation_m) continue;
-    const Eigen::Vector3f beta = delta / separation;
+    const Line2 line{u[a], v[a], du / separation, dv / separation};
     std::uint32_t score = 0;
     for (std::size_t k = 0; k < n; k += step) {
-      score += distance_to_line(on_wall(cloud, wall, pts[k]), p1, beta) < cfg.line_inlier_m;
+      score += line.distance(u[pts[k]], v[pts[k]]) < cfg.line_inlier_m;
     }
-    const float psi_new = line_angle_psi(beta);
+    const float psi_new = line_angle_psi(basis.direction_3d(line.du, line.dv));
     const int slot = std::fabs(psi_new - psi[0]) <= std::fabs(psi_new - psi[1]) ? 0 : 1;
     const int other = 1 - slot;
     if (score > candidates[slot].score) {
-      candidates[slot] = {true, p1, beta, psi_new, score};
+      best[slot] = line;
+      candidates[slot].score = score;
+      candidates[slot].valid = true;
       psi[slot] = psi_new;
       // The weaker slot follows the dominant one at a right angle.
       if (candidates[slot].score > candidates[other].score) psi[other] = kHalfPi - psi[slot];
     }
   }
+  for (int k = 0; k < 2; ++k) {
+    if (candidates[k].valid) candidates[k] = to_model(basis, best[k], candidates[k].score);
+  }
 }
 
 void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                          const LineModel& line, const IndexList& points, IndexList& out) {
+                          const Workspace& ws, const LineModel& line, const IndexList& points,
+                          IndexList& out) {
+  (void)cloud;
   out.clear();
   if (!line.valid) return;
+  const Line2 l = to_line2(WallBasis(wall), line);
   for (std::int32_t i : points) {
-    if (distance_to_line(on_wall(cloud, wall, i), line.point, line.direction) < cfg.line_inlier_m) {
-      out.push(i);
-    }
+    if (l.distance(ws.wall_u_m[i], ws.wall_v_m[i]) < cfg.line_inlier_m) out.push(i);
   }
 }
 
 void refine_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                 const IndexList& points, LineModel* line, IndexList& inliers) {
+                 const Workspace& ws, const IndexList& points, LineModel* line,
+                 IndexList& inliers) {
+  const WallBasis basis(wall);
   for (int pass = 0; pass < 2; ++pass) {
-    collect_line_inliers(cloud, cfg, wall, *line, points, inliers);
+    collect_line_inliers(cloud, cfg, wall, ws, *line, points, inliers);
     if (inliers.size() < 3) return;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (std::int32_t i : inliers) mean += on_wall(cloud, wall, i).cast<double>();
-    mean /= static_cast<double>(inliers.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    // Principal axis of the inliers, in wall coordinates (2 x 2).
+    double su = 0, sv = 0;
     for (std::int32_t i : inliers) {
-      const Eigen::Vector3d q = on_wall(cloud, wall, i).cast<double>() - mean;
-      cov.noalias() += q * q.transpose();
+      su += ws.wall_u_m[i];
+      sv += ws.wall_v_m[i];
     }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-    solver.computeDirect(cov);
-    const Eigen::Vector3f direction = solver.eigenvectors().col(2).cast<float>();
-    if (!direction.allFinite()) return;
-    line->point = mean.cast<float>();
-    line->direction = direction.normalized();
-    line->psi_rad = line_angle_psi(line->direction);
+    const double m = static_cast<double>(inliers.size());
+    const double mu = su / m, mv = sv / m;
+    double cuu = 0, cuv = 0, cvv = 0;
+    for (std::int32_t i : inliers) {
+      const double a = ws.wall_u_m[i] - mu, b = ws.wall_v_m[i] - mv;
+      cuu += a * a;
+      cuv += a * b;
+      cvv += b * b;
+    }
+    const double angle = 0.5 * std::atan2(2.0 * cuv, cuu - cvv);
+    const Line2 l{static_cast<float>(mu), static_cast<float>(mv),
+                  static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle))};
+    *line = to_model(basis, l, line->score);
   }
-  collect_line_inliers(cloud, cfg, wall, *line, points, inliers);
+  collect_line_inliers(cloud, cfg, wall, ws, *line, points, inliers);
 }
 
 void remove_line_points(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                        const LineModel& line, IndexList& points) {
+                        const Workspace& ws, const LineModel& line, IndexList& points) {
+  (void)cloud;
+  const Line2 l = to_line2(WallBasis(wall), line);
   std::size_t kept = 0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const std::int32_t i = points[k];
-    if (distance_to_line(on_wall(cloud, wall, i), line.point, line.direction) >=
-        cfg.line_inlier_m) {
-      points[kept++] = i;
-    }
+    if (l.distance(ws.wall_u_m[i], ws.wall_v_m[i]) >= cfg.line_inlier_m) points[kept++] = i;
   }
   points.resize_down(kept);
 }

@@ -165,11 +165,12 @@ void test_candidates_cluster_and_select(void**) {
   const Plane wall = run_filters(cloud, cfg, ws, &scale);
   Random rng(11);
   LineModel cand[2];
-  estimate_handrail_candidates(cloud, cfg, wall, rng, ws.side, cand);
+  project_to_wall(cloud, wall, ws);
+  estimate_handrail_candidates(cloud, cfg, wall, rng, ws, ws.side, cand);
   const int k = cand[0].score >= cand[1].score ? 0 : 1;
   assert_true(cand[k].valid);
   assert_near(cand[k].psi_rad, 0.0, 0.05);  // along image y
-  collect_line_inliers(cloud, cfg, wall, cand[k], ws.side, ws.line[0]);
+  collect_line_inliers(cloud, cfg, wall, ws, cand[k], ws.side, ws.line[0]);
   const Cluster c = cluster_along_line(cloud, cfg, cand[k], ws.line[0], ws.line_t_m.get());
   assert_near(c.length_m(), 0.3, 0.02);
   assert_int_equal(c.count, ws.line[0].size());
@@ -215,7 +216,8 @@ void test_cluster_splits_at_gaps(void**) {
   const Plane wall = run_filters(cloud, cfg, ws, &scale);
   LineModel line{true, Eigen::Vector3f(0, 0, static_cast<float>(kWall)), Eigen::Vector3f(0, 1, 0),
                  0.0f, 0};
-  collect_line_inliers(cloud, cfg, wall, line, ws.side, ws.line[0]);
+  project_to_wall(cloud, wall, ws);
+  collect_line_inliers(cloud, cfg, wall, ws, line, ws.side, ws.line[0]);
   const std::size_t before = ws.line[0].size();
   const Cluster c = cluster_along_line(cloud, cfg, line, ws.line[0], ws.line_t_m.get());
   assert_true(c.count < before);

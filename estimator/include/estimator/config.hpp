@@ -28,7 +28,7 @@ struct DetectorConfig {
   float max_range_m = 2.00f;
 
   // Plane estimation (RANSAC over 3 points, then least squares on inliers).
-  std::uint32_t plane_iterations = 60;
+  std::uint32_t plane_iterations = 40;
   std::uint32_t plane_score_samples = 800;  // points scored per hypothesis
   float plane_inlier_m = 0.015f;
   float plane_min_inlier_fraction = 0.20f;
@@ -64,7 +64,7 @@ struct DetectorConfig {
   // Selection by the gripper's angle psi_p: 0 = handrails along image y.
   float gripper_angle_rad = 0.0f;
 
-  // End detection: how far past the last inlier to look for the wall.
+  // End detection: how far past the bar's last pixel to look for the wall.
   float end_search_m = 0.10f;
 
   // Target pose: p_g = p_c + d_c v_P.

@@ -23,29 +23,35 @@ struct LineModel {
 // The line's angle to the image's y axis, in [0, pi/2].
 float line_angle_psi(const Eigen::Vector3f& direction);
 
-// Algorithm 2: the two most supported lines, the weaker one kept near
-// perpendicular to the stronger. Points are projected onto the wall so that
-// depth noise does not blur the lines.
+// The side set's coordinates in the wall plane (ws.wall_u_m, ws.wall_v_m),
+// computed once: the line searches below work on them. Projecting onto the
+// wall along its normal also keeps depth noise from blurring the lines.
+void project_to_wall(const OrganizedCloud& cloud, const Plane& wall, Workspace& ws);
+
+// Algorithm 2: the two most supported lines among `points` (a subset of the
+// side set, after project_to_wall), the weaker one kept near perpendicular
+// to the stronger.
 void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                  const Plane& wall, Random& rng, const IndexList& points,
-                                  LineModel candidates[2]);
+                                  const Plane& wall, Random& rng, const Workspace& ws,
+                                  const IndexList& points, LineModel candidates[2]);
 
 // The points within the inlier distance of the line, into out.
 void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                          const LineModel& line, const IndexList& points, IndexList& out);
+                          const Workspace& ws, const LineModel& line, const IndexList& points,
+                          IndexList& out);
 
 // Least-squares refit of a RANSAC line: collects its inliers among
 // `points`, fits their principal axis in the wall plane, and repeats, so a
 // line from two close samples does not keep their angle error. `inliers`
 // holds the final inliers.
 void refine_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                 const IndexList& points, LineModel* line, IndexList& inliers);
+                 const Workspace& ws, const IndexList& points, LineModel* line, IndexList& inliers);
 
 // Drops the points within the inlier distance of the line, so that the next
 // search finds the next line (used when a line fails verification: a cable
 // with more support than the handrail must not hide it).
 void remove_line_points(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                        const LineModel& line, IndexList& points);
+                        const Workspace& ws, const LineModel& line, IndexList& points);
 
 struct Cluster {
   std::uint32_t count = 0;

@@ -30,7 +30,12 @@ struct OrganizedCloud {
   std::size_t size() const { return static_cast<std::size_t>(width) * height; }
 };
 
-// Invalid: confidence 0, any non-finite coordinate, or z <= 0.
-bool is_valid_point(const CloudPoint& p);
+// Invalid: confidence 0, any non-finite coordinate, or z <= 0. (x - x is
+// NaN exactly when x is NaN or infinite: one test per coordinate, inline,
+// since it runs for every pixel of every frame.)
+inline bool is_valid_point(const CloudPoint& p) {
+  const float check = (p.x_m - p.x_m) + (p.y_m - p.y_m) + (p.z_m - p.z_m);
+  return p.confidence != 0 && check == 0.0f && p.z_m > 0.0f;
+}
 
 }  // namespace estimator

@@ -63,9 +63,11 @@ struct Workspace {
   IndexList cross;
   IndexList side;
   IndexList line[2];
-  IndexList scratch;                // the line search's remaining points
-  IndexList band;                   // raised pixels around a candidate line
-  std::unique_ptr<float[]> values;  // per-point scratch for medians
+  IndexList scratch;                  // the line search's remaining points
+  IndexList band;                     // raised pixels around a candidate line
+  std::unique_ptr<float[]> values;    // per-point scratch for medians
+  std::unique_ptr<float[]> wall_u_m;  // side points' coordinates in the wall plane
+  std::unique_ptr<float[]> wall_v_m;
 
   std::size_t bytes() const;
 };

@@ -1,0 +1,150 @@
+// Google Benchmark: the detector per stage and per frame, on recorded
+// simulator frames (tests/data), one core. Run from the build tree:
+//   tools/bench/estimator_bench [--benchmark_repetitions=5]
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "estimator/handrail_detector.hpp"
+#include "estimator/handrail_filters.hpp"
+#include "estimator/line_estimation.hpp"
+#include "estimator/plane_estimation.hpp"
+#include "hal/pcd_io.hpp"
+
+#ifndef HRP_SOURCE_DIR
+#define HRP_SOURCE_DIR "."
+#endif
+
+namespace {
+
+struct Frame {
+  std::vector<estimator::CloudPoint> points;
+  estimator::OrganizedCloud cloud;
+  estimator::DetectorConfig cfg;
+};
+
+const Frame& frame(const char* name, bool round) {
+  static std::vector<Frame*> cache;
+  static std::vector<std::string> names;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k] == name) return *cache[k];
+  hal::PcdFrame pcd;
+  std::string error;
+  if (!hal::read_pcd(std::string(HRP_SOURCE_DIR) + "/tests/data/" + name, &pcd, &error)) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    std::exit(1);
+  }
+  Frame* f = new Frame;
+  f->points.resize(pcd.points.size());
+  for (std::size_t i = 0; i < pcd.points.size(); ++i) {
+    const hal::DepthPoint& p = pcd.points[i];
+    f->points[i] = {p.x_m, p.y_m, p.z_m, p.noise_m, p.gray_value, p.confidence};
+  }
+  f->cloud = {0, 0, pcd.width, pcd.height, f->points.data()};
+  f->cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);
+  if (round) f->cfg.handrail = estimator::paper_round_handrail(0.55f);
+  cache.push_back(f);
+  names.push_back(name);
+  return *f;
+}
+
+void BM_FrameProposed(benchmark::State& state, const char* name, bool round) {
+  const Frame& f = frame(name, round);
+  estimator::HandrailDetector det(f.cfg);
+  std::uint64_t id = 0;
+  for (auto _ : state) {
+    estimator::OrganizedCloud c = f.cloud;
+    c.frame_id = id++;  // fresh random numbers each frame, as live
+    benchmark::DoNotOptimize(det.detect(c, estimator::Method::kProposed));
+  }
+}
+
+void BM_FrameBasic(benchmark::State& state, const char* name, bool round) {
+  const Frame& f = frame(name, round);
+  estimator::HandrailDetector det(f.cfg);
+  std::uint64_t id = 0;
+  for (auto _ : state) {
+    estimator::OrganizedCloud c = f.cloud;
+    c.frame_id = id++;
+    benchmark::DoNotOptimize(det.detect(c, estimator::Method::kBasic));
+  }
+}
+
+// The stages, each on the state the previous stages leave in the workspace.
+struct StageSetup {
+  const Frame& f;
+  estimator::Workspace ws;
+  estimator::Plane wall;
+  estimator::PixelScale scale;
+  explicit StageSetup(const Frame& fr) : f(fr), ws(fr.cloud.size()) {
+    for (std::size_t i = 0; i < f.cloud.size(); ++i) {
+      ws.flags[i] = 0;
+      ws.signed_distance_m[i] = NAN;
+      if (estimator::is_valid_point(f.cloud.points[i])) {
+        ws.flags[i] = estimator::kFlagValid;
+        ws.valid.push(static_cast<std::int32_t>(i));
+      }
+    }
+    estimator::Random rng(1);
+    scale = estimator::estimate_pixel_scale(f.cloud, ws.valid);
+    wall = estimator::estimate_plane(f.cloud, f.cfg, rng, ws).plane;
+    estimator::gap_distance_test(f.cloud, f.cfg, ws);
+    estimator::cross_point_test(f.cloud, f.cfg, wall, scale, ws);
+    estimator::side_width_test(f.cloud, f.cfg, scale, ws);
+    estimator::project_to_wall(f.cloud, wall, ws);
+  }
+};
+
+void BM_Stage(benchmark::State& state, int stage) {
+  static StageSetup* s = new StageSetup(frame("table2-iss-1.pcd", false));
+  estimator::Random rng(2);
+  for (auto _ : state) {
+    switch (stage) {
+      case 0:
+        benchmark::DoNotOptimize(estimator::estimate_pixel_scale(s->f.cloud, s->ws.valid));
+        break;
+      case 1:
+        benchmark::DoNotOptimize(estimator::estimate_plane(s->f.cloud, s->f.cfg, rng, s->ws));
+        break;
+      case 2:
+        estimator::gap_distance_test(s->f.cloud, s->f.cfg, s->ws);
+        break;
+      case 3:
+        estimator::cross_point_test(s->f.cloud, s->f.cfg, s->wall, s->scale, s->ws);
+        break;
+      case 4:
+        estimator::side_width_test(s->f.cloud, s->f.cfg, s->scale, s->ws);
+        break;
+      case 5: {
+        estimator::LineModel c[2];
+        estimator::estimate_handrail_candidates(s->f.cloud, s->f.cfg, s->wall, rng, s->ws,
+                                                s->ws.side, c);
+        benchmark::DoNotOptimize(c);
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_FrameProposed, iss_table2_1, "table2-iss-1.pcd", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FrameProposed, round_table2_2, "table2-round-2.pcd", true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FrameProposed, clutter_only, "clutter-only-0.pcd", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FrameBasic, iss_table2_1, "table2-iss-1.pcd", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Stage, pixel_scale, 0)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Stage, plane_estimation, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Stage, gap_distance_test, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Stage, cross_point_test, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Stage, side_width_test, 4)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Stage, handrail_candidates, 5)->Unit(benchmark::kMicrosecond);
+
+BENCHMARK_MAIN();
