@@ -1,6 +1,7 @@
 #include "sim_hal/scene.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace sim_hal {
@@ -271,13 +272,15 @@ void Scene::add_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
   surfaces.push_back(make_box(center, R, 0.5 * size_m, -1, reflectivity));
 }
 
-bool intersect_scene(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                     double t_min, double t_max, Hit* hit) {
+bool intersect_surfaces(const Scene& scene, const std::int32_t* surfaces, std::size_t count,
+                        const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min,
+                        double t_max, Hit* hit) {
   double t = t_max;
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
   std::int32_t which = -1;
-  for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
-    const Surface& s = scene.surfaces[k];
+  for (std::size_t j = 0; j < count; ++j) {
+    const std::int32_t k = surfaces[j];
+    const Surface& s = scene.surfaces[static_cast<std::size_t>(k)];
     if (misses_bound(s, o, d, t)) continue;
     bool got = false;
     switch (s.kind) {
@@ -294,13 +297,35 @@ bool intersect_scene(const Scene& scene, const Eigen::Vector3d& o, const Eigen::
         got = hit_rounded_bar(s.bar, o, d, t_min, &t, &n);
         break;
     }
-    if (got) which = static_cast<std::int32_t>(k);
+    if (got) which = k;
   }
   if (which < 0) return false;
   hit->t = t;
   hit->normal = n.dot(d) > 0.0 ? Eigen::Vector3d(-n) : n;
   hit->surface = which;
   return true;
+}
+
+bool intersect_scene(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                     double t_min, double t_max, Hit* hit) {
+  // Small scenes: a fixed list of every index, built on the stack in chunks.
+  constexpr std::size_t kChunk = 256;
+  std::int32_t ids[kChunk];
+  Hit best;
+  bool any = false;
+  double limit = t_max;
+  for (std::size_t base = 0; base < scene.surfaces.size(); base += kChunk) {
+    const std::size_t n = std::min(kChunk, scene.surfaces.size() - base);
+    for (std::size_t k = 0; k < n; ++k) ids[k] = static_cast<std::int32_t>(base + k);
+    Hit h;
+    if (intersect_surfaces(scene, ids, n, o, d, t_min, limit, &h)) {
+      best = h;
+      limit = h.t;
+      any = true;
+    }
+  }
+  if (any) *hit = best;
+  return any;
 }
 
 }  // namespace sim_hal

@@ -13,8 +13,30 @@ double flying_pixel_threshold_m(double range_m) {
   return 0.018 + (0.14 - 0.018) * (range_m - 1.0) / 3.5;
 }
 
+namespace {
+constexpr int kTile = 16;
+}
+
 DepthRenderer::DepthRenderer(const CameraIntrinsics& cam, const ToFSettings& settings)
     : cam_(cam), settings_(settings), rays_(pixel_rays(cam)) {
+  // Each tile's cone: the mean of its rays, and the widest angle to any.
+  const int w = static_cast<int>(cam.width), h = static_cast<int>(cam.height);
+  for (int ty = 0; ty < h; ty += kTile) {
+    for (int tx = 0; tx < w; tx += kTile) {
+      Eigen::Vector3f axis = Eigen::Vector3f::Zero();
+      for (int y = ty; y < std::min(h, ty + kTile); ++y)
+        for (int x = tx; x < std::min(w, tx + kTile); ++x)
+          axis += rays_[static_cast<std::size_t>(y * w + x)];
+      axis.normalize();
+      float min_cos = 1.0f;
+      for (int y = ty; y < std::min(h, ty + kTile); ++y)
+        for (int x = tx; x < std::min(w, tx + kTile); ++x)
+          min_cos = std::min(min_cos, axis.dot(rays_[static_cast<std::size_t>(y * w + x)]));
+      tile_axis_.push_back(axis);
+      tile_half_angle_.push_back(std::acos(std::clamp(min_cos, -1.0f, 1.0f)));
+    }
+  }
+  tile_begin_.resize(tile_axis_.size() + 1);
   const std::size_t n = rays_.size();
   range_.resize(n);
   measured_.resize(n);
@@ -25,25 +47,58 @@ DepthRenderer::DepthRenderer(const CameraIntrinsics& cam, const ToFSettings& set
   sorted_.reserve(n);
 }
 
-void DepthRenderer::cast_rays(const Scene& scene, const Eigen::Isometry3d& T_world_cam) {
+void DepthRenderer::cull_surfaces_per_tile(const Scene& scene,
+                                           const Eigen::Isometry3d& T_world_cam) {
   const Eigen::Vector3d origin = T_world_cam.translation();
   const Eigen::Matrix3d R = T_world_cam.rotation();
-  for (std::size_t i = 0; i < rays_.size(); ++i) {
-    const Eigen::Vector3d dir = R * rays_[i].cast<double>();
-    Hit hit;
-    // Look a little past the sensor's range so that out-of-range surfaces
-    // still read as "too far" rather than as nothing.
-    if (intersect_scene(scene, origin, dir, 1e-4, settings_.range_max_m * 1.5, &hit)) {
-      range_[i] = static_cast<float>(hit.t);
-      surface_[i] = hit.surface;
-      cos_incidence_[i] = static_cast<float>(std::fabs(hit.normal.dot(dir)));
-      const double refl = scene.surfaces[static_cast<std::size_t>(hit.surface)].reflectivity;
-      amplitude_[i] = static_cast<float>(refl * cos_incidence_[i] / (hit.t * hit.t));
-    } else {
-      range_[i] = 0.0f;
-      surface_[i] = -1;
-      cos_incidence_[i] = 0.0f;
-      amplitude_[i] = 0.0f;
+  tile_surfaces_.clear();
+  for (std::size_t t = 0; t < tile_axis_.size(); ++t) {
+    tile_begin_[t] = tile_surfaces_.size();
+    const Eigen::Vector3d axis = R * tile_axis_[t].cast<double>();
+    const double half = tile_half_angle_[t];
+    for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
+      const Surface& s = scene.surfaces[k];
+      const Eigen::Vector3d v = s.bound_center - origin;
+      const double dist = v.norm();
+      bool keep = dist <= s.bound_radius;  // the camera is inside the bound
+      if (!keep) {
+        const double angle = std::acos(std::clamp(v.dot(axis) / dist, -1.0, 1.0));
+        keep = angle <= half + std::asin(s.bound_radius / dist) + 1e-3;
+      }
+      if (keep) tile_surfaces_.push_back(static_cast<std::int32_t>(k));
+    }
+  }
+  tile_begin_[tile_axis_.size()] = tile_surfaces_.size();
+}
+
+void DepthRenderer::cast_rays(const Scene& scene, const Eigen::Isometry3d& T_world_cam) {
+  cull_surfaces_per_tile(scene, T_world_cam);
+  const Eigen::Vector3d origin = T_world_cam.translation();
+  const Eigen::Matrix3d R = T_world_cam.rotation();
+  const int w = static_cast<int>(cam_.width), h = static_cast<int>(cam_.height);
+  const int tiles_x = (w + kTile - 1) / kTile;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y * w + x);
+      const std::size_t tile = static_cast<std::size_t>((y / kTile) * tiles_x + x / kTile);
+      const Eigen::Vector3d dir = R * rays_[i].cast<double>();
+      Hit hit;
+      // Look a little past the sensor's range so that out-of-range surfaces
+      // still read as "too far" rather than as nothing.
+      if (intersect_surfaces(scene, tile_surfaces_.data() + tile_begin_[tile],
+                             tile_begin_[tile + 1] - tile_begin_[tile], origin, dir, 1e-4,
+                             settings_.range_max_m * 1.5, &hit)) {
+        range_[i] = static_cast<float>(hit.t);
+        surface_[i] = hit.surface;
+        cos_incidence_[i] = static_cast<float>(std::fabs(hit.normal.dot(dir)));
+        const double refl = scene.surfaces[static_cast<std::size_t>(hit.surface)].reflectivity;
+        amplitude_[i] = static_cast<float>(refl * cos_incidence_[i] / (hit.t * hit.t));
+      } else {
+        range_[i] = 0.0f;
+        surface_[i] = -1;
+        cos_incidence_[i] = 0.0f;
+        amplitude_[i] = 0.0f;
+      }
     }
   }
 }
@@ -89,8 +144,8 @@ void DepthRenderer::add_multipath() {
       const float r = range_[i];
       if (r <= 0.0f) continue;
       int nearer = 0, total = 0;
-      for (int rr = std::max(0, row - win); rr <= std::min(h - 1, row + win); ++rr) {
-        for (int cc = std::max(0, col - win); cc <= std::min(w - 1, col + win); ++cc) {
+      for (int rr = std::max(0, row - win); rr <= std::min(h - 1, row + win); rr += 2) {
+        for (int cc = std::max(0, col - win); cc <= std::min(w - 1, col + win); cc += 2) {
           const float rn = range_[static_cast<std::size_t>(rr * w + cc)];
           ++total;
           nearer += rn > 0.0f && r - rn > 0.01f && r - rn < 0.15f;

@@ -94,4 +94,9 @@ struct Hit {
 bool intersect_scene(const Scene& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
                      double t_min, double t_max, Hit* hit);
 
+// The same, testing only the listed surfaces (a renderer's per-tile cull).
+bool intersect_surfaces(const Scene& scene, const std::int32_t* surfaces, std::size_t count,
+                        const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_min,
+                        double t_max, Hit* hit);
+
 }  // namespace sim_hal

@@ -47,7 +47,8 @@ struct ToFSettings {
 
   // Multipath: light bounced off a nearby raised surface lengthens the path
   // in concave corners (a leg meeting the wall). Bias = gain * the fraction
-  // of the window's pixels 1..15 cm nearer than this one.
+  // of the window's pixels 1..15 cm nearer than this one (the window
+  // sampled every second pixel).
   bool multipath = true;
   double multipath_gain_m = 0.008;
   int multipath_window_px = 3;
@@ -73,6 +74,9 @@ class DepthRenderer {
 
  private:
   void cast_rays(const Scene& scene, const Eigen::Isometry3d& T_world_cam);
+  // Per 16 x 16 pixel tile, the surfaces whose bounding sphere the tile's
+  // cone of rays can reach.
+  void cull_surfaces_per_tile(const Scene& scene, const Eigen::Isometry3d& T_world_cam);
   void add_flying_pixels(std::uint64_t stream_seed);
   void add_multipath();
   void apply_flying_filter(std::vector<hal::DepthPoint>* out);
@@ -84,6 +88,12 @@ class DepthRenderer {
   std::vector<std::int32_t> surface_;
   std::vector<float> sorted_;
   std::vector<std::uint8_t> drop_;
+  // Tiles: axis and half-angle of each tile's cone (camera frame), and the
+  // surfaces each tile may see (offsets into tile_surfaces_).
+  std::vector<Eigen::Vector3f> tile_axis_;
+  std::vector<float> tile_half_angle_;
+  std::vector<std::size_t> tile_begin_;
+  std::vector<std::int32_t> tile_surfaces_;
 };
 
 }  // namespace sim_hal
