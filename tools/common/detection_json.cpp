@@ -63,4 +63,16 @@ std::string detection_to_json(const std::string& frame, const estimator::Handrai
   return s;
 }
 
+std::string track_to_json(const estimator::TrackedHandrail& t) {
+  std::string s = "{\"event\":\"" + std::string(to_string(t.event)) + "\"";
+  if (t.valid) {
+    s += ",\"state\":\"" + std::string(to_string(t.state)) + "\"";
+    s += ",\"position\":" + vec(t.p_world_center);
+    s += ",\"axis\":" + vec(t.R_world_handrail.col(2));
+    s += ",\"normal\":" + vec(t.R_world_handrail.col(0));
+    s += ",\"target_position\":" + vec(t.p_world_target);
+  }
+  return s + "}";
+}
+
 }  // namespace tools

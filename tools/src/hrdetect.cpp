@@ -15,6 +15,7 @@
 #include "common/detector_config_io.hpp"
 #include "common/frame_convert.hpp"
 #include "estimator/handrail_detector.hpp"
+#include "estimator/handrail_tracker.hpp"
 #include "estimator/pixel_scale.hpp"
 #include "hal/pcd_io.hpp"
 
@@ -32,6 +33,10 @@ void usage(FILE* out) {
                "  --handrail iss|round     handrail geometry (default iss; see --config)\n"
                "  --config FILE            detector configuration (JSON; estimator/README.md)\n"
                "  --debug-png DIR          pictures of each stage per frame (DIR/NAME_STAGE.png)\n"
+               "  --sequence               the files are a time series from a still camera, in\n"
+               "                           the given order: track the handrail over them (the\n"
+               "                           paper's Tr1..Tr3 and an outlier gate) and add a\n"
+               "                           \"track\" object to each line\n"
                "  -h, --help               this text\n\n"
                "exit status: 0 when every file was read, 1 when any file could not be\n"
                "(the others are still processed), 2 for bad options.\n");
@@ -163,7 +168,7 @@ int main(int argc, char** argv) {
   estimator::Method method = estimator::Method::kProposed;
   std::string config_path, debug_dir, handrail = "iss";
   double gripper_deg = 0.0;
-  bool gripper_given = false;
+  bool gripper_given = false, sequence = false;
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -206,6 +211,8 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--config") {
       config_path = next("--config");
+    } else if (a == "--sequence") {
+      sequence = true;
     } else if (a == "--debug-png") {
       debug_dir = next("--debug-png");
     } else if (!a.empty() && a[0] == '-') {
@@ -236,6 +243,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   bool all_read = collect_inputs(args, &files);
   estimator::HandrailDetector detector(cfg);
+  estimator::TrackerConfig track_cfg;
+  track_cfg.target_standoff_m = cfg.target_standoff_m;
+  estimator::HandrailTracker tracker(track_cfg);
+  const Eigen::Isometry3f still = Eigen::Isometry3f::Identity();
   std::vector<estimator::CloudPoint> buffer;
   hal::PcdFrame pcd;
   std::uint64_t frame_id = 0;
@@ -256,7 +267,12 @@ int main(int argc, char** argv) {
     const hal::DepthFrame frame = pcd.view(frame_id++, 0);
     const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
     const estimator::HandrailDetection d = detector.detect(cloud, method);
-    std::printf("%s\n", tools::detection_to_json(file, d).c_str());
+    std::string line = tools::detection_to_json(file, d);
+    if (sequence) {
+      line.pop_back();  // the closing brace
+      line += ",\"track\":" + tools::track_to_json(tracker.update(d, still, still)) + "}";
+    }
+    std::printf("%s\n", line.c_str());
     std::fflush(stdout);
     if (!debug_dir.empty()) write_debug_pictures(debug_dir, stem(file), frame, cloud, detector, d);
   }
