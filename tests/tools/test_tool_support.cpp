@@ -46,9 +46,9 @@ void test_detection_json(void**) {
   estimator::HandrailDetection d;
   d.status = estimator::DetectStatus::kNoLine;
   d.processing_time_us = 1250;
-  assert_string_equal(
-      tools::detection_to_json("a\"b.pcd", d).c_str(),
-      "{\"frame\":\"a\\\"b.pcd\",\"state\":\"NH\",\"reason\":\"NO_LINE\",\"first_line\":\"ACCEPTED\",\"time_ms\":1.250}");
+  assert_string_equal(tools::detection_to_json("a\"b.pcd", d).c_str(),
+                      "{\"frame\":\"a\\\"b.pcd\",\"state\":\"NH\",\"reason\":\"NO_LINE\",\"first_"
+                      "line\":\"ACCEPTED\",\"time_ms\":1.250}");
   d.status = estimator::DetectStatus::kFound;
   d.state = estimator::HandrailState::kOneEnd;
   d.end_seen[1] = true;

@@ -103,7 +103,8 @@ void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth
     // Too little of any handrail in view to expect a detection; one that
     // matches a handrail in view is no error, anything else is false.
     bool matches_any = false;
-    for (const sim_hal::HandrailTruth& h : truth.handrails) matches_any |= is_correct(score_detection(d, h));
+    for (const sim_hal::HandrailTruth& h : truth.handrails)
+      matches_any |= is_correct(score_detection(d, h));
     false_found += !matches_any;
     return;
   }
