@@ -132,7 +132,7 @@ Workspace::Workspace(std::size_t n)
       wall_v_m(new float[n]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 6 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 8);
+  return max_pixels * (sizeof(float) * 5 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 8);
 }
 
 }  // namespace estimator

@@ -208,6 +208,14 @@ void test_recorded_clutter_has_no_handrail(void**) {
   assert_no_pose(d);
 }
 
+void test_working_memory_is_bounded(void**) {
+  // Sized for the Pico Flexx's 224 x 171: within the 4 MB budget.
+  const Workspace ws(224 * 171);
+  print_message("workspace for 224 x 171: %zu bytes\n", ws.bytes());
+  assert_true(ws.bytes() <= 4u * 1024u * 1024u);
+  assert_int_equal(ws.valid.capacity(), 224 * 171);
+}
+
 void test_basic_method_runs(void**) {
   const HandrailDetection d =
       detect_recorded("table2-round-2.pcd", paper_round_handrail(0.55f), Method::kBasic);
@@ -227,6 +235,7 @@ int main() {
       cmocka_unit_test(test_budget_overrun_is_reported),
       cmocka_unit_test(test_recorded_iss_and_round_frames),
       cmocka_unit_test(test_recorded_clutter_has_no_handrail),
+      cmocka_unit_test(test_working_memory_is_bounded),
       cmocka_unit_test(test_basic_method_runs),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
