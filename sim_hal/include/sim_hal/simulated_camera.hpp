@@ -1,0 +1,67 @@
+#pragma once
+// The simulated Pico Flexx behind the hal depth-camera interface: renders a
+// scenario's frames and hands them to the registered listener, either paced
+// at the use case's frame rate (real time) or as fast as possible, or one
+// at a time with capture_next() for lock-step simulation and tests.
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "hal/clock.hpp"
+#include "hal/depth_camera.hpp"
+#include "sim_hal/scenario.hpp"
+#include "sim_hal/tof_sensor.hpp"
+
+namespace sim_hal {
+
+class SimulatedCamera final : public hal::DepthCamera {
+ public:
+  enum class Pacing : std::uint8_t { kRealTime, kAsFastAsPossible };
+
+  // The scenario must outlive the camera; `clock` stamps the frames.
+  SimulatedCamera(const Scenario& scenario, const hal::Clock& clock, Pacing pacing);
+  ~SimulatedCamera() override;
+
+  [[nodiscard]] hal::CameraStatus initialize() override;
+  [[nodiscard]] hal::CameraStatus set_use_case(const char* name) override;
+  [[nodiscard]] hal::CameraStatus current_use_case(const hal::UseCase** use_case) const override;
+  [[nodiscard]] hal::CameraStatus set_exposure_mode(hal::ExposureMode mode) override;
+  [[nodiscard]] hal::CameraStatus set_exposure_time(std::uint32_t exposure_us) override;
+  [[nodiscard]] hal::CameraStatus register_data_listener(hal::DepthDataListener* listener) override;
+  [[nodiscard]] hal::CameraStatus start_capture() override;
+  [[nodiscard]] hal::CameraStatus stop_capture() override;
+  [[nodiscard]] hal::CameraStatus lens_parameters(hal::LensParameters* lens) const override;
+  [[nodiscard]] hal::CameraStatus max_frame_size(std::uint32_t* width,
+                                                 std::uint32_t* height) const override;
+  bool is_connected() const override { return true; }
+  bool is_capturing() const override { return capturing_.load(); }
+
+  // Renders the next pose and delivers it on the caller's thread. Returns
+  // DATA_NOT_FOUND after the last pose, DEVICE_IS_BUSY while capturing.
+  [[nodiscard]] hal::CameraStatus capture_next();
+  std::size_t frames_delivered() const { return next_frame_.load(); }
+  std::size_t frame_count() const { return scenario_.T_world_cam.size(); }
+
+ private:
+  hal::CameraStatus render_and_deliver(std::size_t index);
+  void capture_loop();
+
+  const Scenario& scenario_;
+  const hal::Clock& clock_;
+  Pacing pacing_;
+  CameraIntrinsics intrinsics_;
+  DepthRenderer renderer_;
+  std::vector<hal::DepthPoint> points_;
+  const hal::UseCase* use_case_ = nullptr;
+  bool initialized_ = false;
+  hal::ExposureMode exposure_mode_ = hal::ExposureMode::kAutomatic;
+  hal::DepthDataListener* listener_ = nullptr;
+  std::atomic<bool> capturing_{false};
+  std::atomic<std::size_t> next_frame_{0};
+  std::thread thread_;
+  std::mutex render_mutex_;
+};
+
+}  // namespace sim_hal
