@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstring>
 
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
@@ -10,6 +9,9 @@
 #include "estimator/plane_estimation.hpp"
 
 namespace estimator {
+namespace {
+constexpr float kQuarterPi = 0.78539816f;
+}  // namespace
 
 std::int64_t SteadyTimeSource::now_us() const {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -169,18 +171,29 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     estimate_handrail_candidates(cloud, cfg_, wall_, rng_, ws_, active, candidates);
     ++out->counts.line_searches;
     bool removed = false;
-    for (int k = 0; k < 2; ++k) {
-      if (usable[k] || !candidates[k].valid) continue;
+    for (const LineModel& candidate : candidates) {
+      if (!candidate.valid) continue;
+      // Each search assigns its two slots afresh, so match the candidate to
+      // an angle family by its angle: a family that already has an accepted
+      // line needs no other.
+      bool family_done = false;
+      for (int k = 0; k < 2; ++k) {
+        family_done |=
+            usable[k] && std::fabs(candidate.psi_rad - chosen_line[k].psi_rad) < kQuarterPi;
+      }
+      if (family_done) continue;
+      const int k = usable[0] ? 1 : 0;
       const LineVerdict verdict =
-          verify_candidate(cloud, candidates[k], active, ws_.line[k], &lines[k], ends[k], end_t[k]);
+          verify_candidate(cloud, candidate, active, ws_.line[k], &lines[k], ends[k], end_t[k]);
       if (attempt == 0 && out->counts.first_rejection == LineVerdict::kAccepted) {
         out->counts.first_rejection = verdict;
       }
       if (verdict == LineVerdict::kAccepted) {
         usable[k] = true;
-        chosen_line[k] = candidates[k];
+        chosen_line[k] = candidate;
+        if (usable[0] && usable[1]) break;
       } else {
-        remove_line_points(cloud, cfg_, wall_, ws_, candidates[k], active);
+        remove_line_points(cloud, cfg_, wall_, ws_, candidate, active);
         removed = true;
       }
     }
@@ -189,7 +202,8 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     // slot would find: no need to keep searching for it.
     bool settled = usable[0] && usable[1];
     for (int k = 0; k < 2; ++k) {
-      settled |= usable[k] && std::fabs(chosen_line[k].psi_rad - cfg_.gripper_angle_rad) <= 0.7854f;
+      settled |=
+          usable[k] && std::fabs(chosen_line[k].psi_rad - cfg_.gripper_angle_rad) <= kQuarterPi;
     }
     if (settled || !removed || active.size() < cfg_.min_line_inliers || over_budget(start_us)) {
       break;
