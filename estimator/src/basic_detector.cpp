@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "estimator/handrail_detector.hpp"
+#include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
 #include "estimator/plane_estimation.hpp"
 
@@ -24,7 +25,8 @@ void HandrailDetector::run_basic(const OrganizedCloud& cloud, HandrailDetection*
     return;
   }
   wall_ = plane.plane;
-  out->counts.plane_inliers = plane.inliers;
+  // Per-pixel distances to the wall (the gap set itself is not used here).
+  out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_);
 
   // Plane outliers in front of the wall (not behind it, not the far room).
   IndexList& outliers = ws_.gap;

@@ -40,8 +40,9 @@ void HandrailDetector::select_valid_points(const OrganizedCloud& cloud) {
   for (std::size_t i = 0; i < n; ++i) {
     const CloudPoint& p = cloud.points[i];
     const bool valid = is_valid_point(p) && p.z_m >= lo && p.z_m <= hi;
+    // Distances are written for valid pixels only; every reader checks the
+    // valid flag first, so the rest need no initialising.
     ws_.flags[i] = valid ? kFlagValid : 0;
-    ws_.signed_distance_m[i] = NAN;
     if (valid) ws_.valid.push(static_cast<std::int32_t>(i));
   }
 }
@@ -139,7 +140,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     return;
   }
 
-  gap_distance_test(cloud, cfg_, ws_);
+  out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_);
   cross_point_test(cloud, cfg_, wall_, scale_, ws_);
   side_width_test(cloud, cfg_, scale_, ws_);
   out->counts.gap = static_cast<std::uint32_t>(ws_.gap.size());

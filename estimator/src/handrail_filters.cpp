@@ -21,8 +21,15 @@ bool inside(const OrganizedCloud& cloud, int row, int col) {
          col < static_cast<int>(cloud.width);
 }
 
+// Nearest integer; inline (std::lround is a library call on the hot path).
+int round_to_int(float x) {
+  return static_cast<int>(x < 0.0f ? x - 0.5f : x + 0.5f);
+}
+
+// A pixel's noise, bounded to [0, 2 cm]; NaN counts as 0 (comparisons with
+// NaN are false), so no bad value can open the windows.
 float clamp_noise(float noise_m) {
-  return std::isfinite(noise_m) ? std::fmin(noise_m, 0.02f) : 0.0f;
+  return noise_m >= 0.0f ? (noise_m < 0.02f ? noise_m : 0.02f) : 0.0f;
 }
 
 // Probes for the wall `offset_px` pixels away along (drow, dcol). A probe
@@ -64,7 +71,7 @@ RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, P
       if (!inside(cloud, r, c)) return run;
       const std::int32_t i = r * w + c;
       if (!(ws.flags[i] & kFlagValid) || ws.signed_distance_m[i] < raised_min_m) break;
-      run.peak_m = std::fmax(run.peak_m, ws.signed_distance_m[i]);
+      run.peak_m = std::max(run.peak_m, ws.signed_distance_m[i]);
       ends[side] = {r, c};
     }
   }
@@ -77,18 +84,28 @@ RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, P
 
 }  // namespace
 
-void gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, Workspace& ws) {
+std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                const Plane& wall, Workspace& ws) {
   const float lo = gap_min_m(cfg), hi = gap_max_m(cfg);
+  const float nx = wall.normal.x(), ny = wall.normal.y(), nz = wall.normal.z(), d = wall.d;
+  std::uint32_t plane_inliers = 0;
   ws.gap.clear();
   for (std::int32_t i : ws.valid) {
-    const float s = ws.signed_distance_m[i];
+    const CloudPoint& p = cloud.points[i];
+    const float s = nx * p.x_m + ny * p.y_m + nz * p.z_m + d;
+    ws.signed_distance_m[i] = s;
+    if (std::fabs(s) < cfg.plane_inlier_m) {
+      ws.flags[i] |= kFlagPlane;
+      ++plane_inliers;
+    }
     // A noisy pixel gets a wider window, by twice its own standard deviation.
-    const float widen = 2.0f * clamp_noise(cloud.points[i].noise_m);
+    const float widen = 2.0f * clamp_noise(p.noise_m);
     if (s >= lo - widen && s <= hi + widen) {
       ws.flags[i] |= kFlagGap;
       ws.gap.push(i);
     }
   }
+  return plane_inliers;
 }
 
 void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
@@ -109,10 +126,10 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
   for (std::int32_t i : ws.gap) {
     const Pixel q = pixel_of(cloud, i);
     const float z = cloud.points[i].z_m;
-    const int xp = static_cast<int>(std::lround(scale.px_x(x_plus, z)));
-    const int xm = static_cast<int>(std::lround(scale.px_x(x_minus, z)));
-    const int yp = static_cast<int>(std::lround(scale.px_y(y_plus, z)));
-    const int ym = static_cast<int>(std::lround(scale.px_y(y_minus, z)));
+    const int xp = round_to_int(scale.px_x(x_plus, z));
+    const int xm = round_to_int(scale.px_x(x_minus, z));
+    const int yp = round_to_int(scale.px_y(y_plus, z));
+    const int ym = round_to_int(scale.px_y(y_minus, z));
     const float tol = cfg.wall_tolerance_m;
     const bool x_ok =
         probe_on_wall(cloud, ws, q, 0, 1, xp, tol) && probe_on_wall(cloud, ws, q, 0, -1, xm, tol);

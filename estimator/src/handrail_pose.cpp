@@ -90,8 +90,8 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   float t_min = 0.0f, t_max = 0.0f;
   for (std::size_t k = 0; k < n; ++k) {
     const float t = (point_of(cloud, inliers[k]) - origin).dot(axis);
-    t_min = k == 0 ? t : std::fmin(t_min, t);
-    t_max = k == 0 ? t : std::fmax(t_max, t);
+    t_min = k == 0 ? t : std::min(t_min, t);
+    t_max = k == 0 ? t : std::max(t_max, t);
   }
 
   // Every raised pixel (the gap set) in a generous band around the line:
@@ -150,8 +150,8 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   // The inliers' extent along the refined axis.
   for (std::size_t k = 0; k < n; ++k) {
     const float t = (point_of(cloud, inliers[k]) - origin).dot(axis);
-    t_min = k == 0 ? t : std::fmin(t_min, t);
-    t_max = k == 0 ? t : std::fmax(t_max, t);
+    t_min = k == 0 ? t : std::min(t_min, t);
+    t_max = k == 0 ? t : std::max(t_max, t);
   }
 
   line->axis = axis;
@@ -208,7 +208,7 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
         rv += i / w;
         rz += cloud.points[i].z_m;
         ++m;
-        t_inner = end == 0 ? std::fmin(t_inner, t) : std::fmax(t_inner, t);
+        t_inner = end == 0 ? std::min(t_inner, t) : std::max(t_inner, t);
       }
     }
     if (m == 0) continue;
@@ -256,7 +256,7 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
         if (s >= lo && s <= hi + 0.02f) {
           on_bar = true;
           const float t = (point_of(cloud, i) - line.point).dot(line.axis);
-          t_bar = end == 0 ? std::fmin(t_bar, t) : std::fmax(t_bar, t);
+          t_bar = end == 0 ? std::min(t_bar, t) : std::max(t_bar, t);
         }
       }
       if (in_front) break;  // something hides the end, or the image ends

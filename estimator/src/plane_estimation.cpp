@@ -37,6 +37,9 @@ void gather_inliers(const OrganizedCloud& cloud, const IndexList& valid, const P
 }
 
 constexpr std::size_t kRefitPoints = 6000;
+std::size_t step_for(std::size_t n) {
+  return n > kRefitPoints ? n / kRefitPoints : 1;
+}
 
 }  // namespace
 
@@ -103,24 +106,19 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
   // Two refits: the second one sees inliers of a plane no longer tilted by
   // the triple's noise.
   for (int pass = 0; pass < 2; ++pass) {
-    gather_inliers(cloud, valid, best, cfg.plane_inlier_m, n > kRefitPoints ? n / kRefitPoints : 1,
-                   ws.scratch);
+    gather_inliers(cloud, valid, best, cfg.plane_inlier_m, step_for(n), ws.scratch);
     if (!fit_plane_least_squares(cloud, ws.scratch.begin(), ws.scratch.size(), &best)) {
       return result;
     }
   }
   if (best.d < 0.0f) return result;
 
-  std::uint32_t inliers = 0;
-  for (std::int32_t i : valid) {
-    const float s = best.signed_distance(point_of(cloud, i));
-    ws.signed_distance_m[i] = s;
-    if (std::fabs(s) < cfg.plane_inlier_m) {
-      ws.flags[i] |= kFlagPlane;
-      ++inliers;
-    }
-  }
-  if (inliers < cfg.plane_min_inlier_fraction * static_cast<float>(n)) return result;
+  // Support, judged on the last refit's subsample: the per-pixel distances
+  // are written by the gap distance test, in its single pass over the frame.
+  const std::size_t sampled = (n + step_for(n) - 1) / step_for(n);
+  const float support = static_cast<float>(ws.scratch.size()) / static_cast<float>(sampled);
+  if (support < cfg.plane_min_inlier_fraction) return result;
+  const std::uint32_t inliers = static_cast<std::uint32_t>(support * static_cast<float>(n));
   result.found = true;
   result.plane = best;
   result.inliers = inliers;

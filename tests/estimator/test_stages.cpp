@@ -50,7 +50,7 @@ Plane run_filters(const OrganizedCloud& cloud, const DetectorConfig& cfg, Worksp
   *scale = estimate_pixel_scale(cloud, ws.valid);
   const PlaneEstimate plane = estimate_plane(cloud, cfg, rng, ws);
   assert_true(plane.found);
-  gap_distance_test(cloud, cfg, ws);
+  assert_true(gap_distance_test(cloud, cfg, plane.plane, ws) > 0);
   cross_point_test(cloud, cfg, plane.plane, *scale, ws);
   side_width_test(cloud, cfg, *scale, ws);
   return plane.plane;

@@ -92,7 +92,7 @@ struct StageSetup {
     estimator::Random rng(1);
     scale = estimator::estimate_pixel_scale(f.cloud, ws.valid);
     wall = estimator::estimate_plane(f.cloud, f.cfg, rng, ws).plane;
-    estimator::gap_distance_test(f.cloud, f.cfg, ws);
+    estimator::gap_distance_test(f.cloud, f.cfg, wall, ws);
     estimator::cross_point_test(f.cloud, f.cfg, wall, scale, ws);
     estimator::side_width_test(f.cloud, f.cfg, scale, ws);
     estimator::project_to_wall(f.cloud, wall, ws);
@@ -111,7 +111,8 @@ void BM_Stage(benchmark::State& state, int stage) {
         benchmark::DoNotOptimize(estimator::estimate_plane(s->f.cloud, s->f.cfg, rng, s->ws));
         break;
       case 2:
-        estimator::gap_distance_test(s->f.cloud, s->f.cfg, s->ws);
+        benchmark::DoNotOptimize(
+            estimator::gap_distance_test(s->f.cloud, s->f.cfg, s->wall, s->ws));
         break;
       case 3:
         estimator::cross_point_test(s->f.cloud, s->f.cfg, s->wall, s->scale, s->ws);

@@ -10,8 +10,12 @@
 namespace estimator {
 
 // Gap distance test (eq. 1): points whose distance from the wall is that of
-// the bar's visible surface. ws.valid, ws.signed_distance_m -> ws.gap.
-void gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, Workspace& ws);
+// the bar's visible surface. One pass over ws.valid that also writes every
+// valid point's signed distance to the wall (ws.signed_distance_m) and marks
+// the wall's inliers (kFlagPlane), since all three need the same distance.
+// ws.valid -> ws.gap; returns the number of wall inliers.
+std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                const Plane& wall, Workspace& ws);
 
 // Cross point test (eqs. 2, 3): both probes to either side of the pixel, in
 // image x or in image y, land on the wall. Probe offsets widen on the side

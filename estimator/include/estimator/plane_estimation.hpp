@@ -1,7 +1,8 @@
 #pragma once
 // Step 1: the wall. RANSAC over triples of valid points, scored on a fixed
-// subsample, then two least-squares refits on all points within the inlier
-// distance. Writes every valid pixel's signed distance to the wall.
+// subsample, then two least-squares refits on the points within the inlier
+// distance (a subsample of a few thousand). The per-pixel distances to the
+// wall are computed in the gap distance test's single pass.
 #include "estimator/config.hpp"
 #include "estimator/organized_cloud.hpp"
 #include "estimator/random.hpp"
@@ -13,7 +14,7 @@ namespace estimator {
 struct PlaneEstimate {
   bool found = false;
   Plane plane;
-  std::uint32_t inliers = 0;
+  std::uint32_t inliers = 0;  // estimated from the refit's subsample
 };
 
 // Least-squares plane through points (smallest eigenvector of their

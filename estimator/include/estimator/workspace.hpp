@@ -55,7 +55,7 @@ struct Workspace {
   explicit Workspace(std::size_t max_pixels);
 
   std::size_t max_pixels;
-  std::unique_ptr<float[]> signed_distance_m;  // to the wall; NaN if invalid
+  std::unique_ptr<float[]> signed_distance_m;  // to the wall; only for kFlagValid pixels
   std::unique_ptr<std::uint8_t[]> flags;       // PixelFlag bits
   std::unique_ptr<float[]> line_t_m;           // position along a line
   IndexList valid;
