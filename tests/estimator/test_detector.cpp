@@ -8,7 +8,7 @@
 #include "cmocka_cpp.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "hal/json.hpp"
-#include "hal/pcd_io.hpp"
+#include "recorded_frames.hpp"
 #include "synthetic_cloud.hpp"
 #include "test_data.hpp"
 
@@ -163,22 +163,17 @@ Truth read_truth(const std::string& name) {
 
 HandrailDetection detect_recorded(const std::string& pcd, const HandrailGeometry& geometry,
                                   Method method) {
-  hal::PcdFrame frame;
+  testing_support::RecordedCloud frame;
   std::string error;
-  if (!hal::read_pcd(testing_support::data_path(pcd), &frame, &error)) {
+  if (!testing_support::load_recorded_cloud(pcd, &frame, &error)) {
     print_error("%s\n", error.c_str());
     fail();
-  }
-  std::vector<CloudPoint> pts(frame.points.size());
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const hal::DepthPoint& p = frame.points[i];
-    pts[i] = {p.x_m, p.y_m, p.z_m, p.noise_m, p.gray_value, p.confidence};
   }
   DetectorConfig cfg;
   cfg.handrail = geometry;
   cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // these rails run along image x
   HandrailDetector det(cfg);
-  return det.detect(OrganizedCloud{0, 0, frame.width, frame.height, pts.data()}, method);
+  return det.detect(frame.cloud, method);
 }
 
 void check_against_truth(const HandrailDetection& d, const Truth& t) {

@@ -12,9 +12,8 @@
 
 #include "cmocka_cpp.hpp"
 #include "estimator/handrail_detector.hpp"
-#include "hal/pcd_io.hpp"
+#include "recorded_frames.hpp"
 #include "synthetic_cloud.hpp"
-#include "test_data.hpp"
 
 namespace {
 std::atomic<bool> g_armed{false};
@@ -86,15 +85,11 @@ void test_no_allocation_over_hundreds_of_frames(void**) {
   std::vector<std::vector<CloudPoint>> frames;
   std::vector<OrganizedCloud> clouds;
   for (const char* name : {"table2-iss-1.pcd", "table2-round-2.pcd", "clutter-only-0.pcd"}) {
-    hal::PcdFrame pcd;
+    testing_support::RecordedCloud recorded;
     std::string error;
-    assert_true(hal::read_pcd(testing_support::data_path(name), &pcd, &error));
-    frames.emplace_back(pcd.points.size());
-    for (std::size_t i = 0; i < pcd.points.size(); ++i) {
-      const hal::DepthPoint& p = pcd.points[i];
-      frames.back()[i] = {p.x_m, p.y_m, p.z_m, p.noise_m, p.gray_value, p.confidence};
-    }
-    clouds.push_back({0, 0, pcd.width, pcd.height, nullptr});
+    assert_true(testing_support::load_recorded_cloud(name, &recorded, &error));
+    frames.push_back(std::move(recorded.points));
+    clouds.push_back(recorded.cloud);
   }
   testing_support::SyntheticScene s;
   s.cylinders.push_back(testing_support::vertical_bar(0.6, 0.0825, 0.3));

@@ -27,6 +27,19 @@ Scene wall_scene(double distance_m, double tilt_deg = 0.0) {
   return scene;
 }
 
+// The wall of wall_scene(0.6) with a handrail on it, centred on the view.
+Scene wall_with_handrail(HandrailKind kind, const Eigen::Vector3d& axis, double length_m) {
+  Scene scene = wall_scene(0.6);
+  Handrail h;
+  h.kind = kind;
+  h.foot_center = Eigen::Vector3d(-0.6, 0, 0);
+  h.normal = Eigen::Vector3d(1, 0, 0);
+  h.axis = axis;
+  h.bar_length_m = length_m;
+  scene.add_handrail(h);
+  return scene;
+}
+
 Eigen::Isometry3d looking_at_wall() {
   return camera_pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 0, 1),
                      Eigen::Vector3d::Zero());
@@ -80,14 +93,7 @@ void test_field_of_view(void**) {
 
 void test_bar_image_width(void**) {
   const CameraIntrinsics cam = pico_flexx_intrinsics();
-  Scene scene = wall_scene(0.6);
-  Handrail h;
-  h.kind = HandrailKind::kPaperRound;
-  h.foot_center = Eigen::Vector3d(-0.6, 0, 0);
-  h.normal = Eigen::Vector3d(1, 0, 0);
-  h.axis = Eigen::Vector3d(0, 0, 1);
-  h.bar_length_m = 0.55;
-  scene.add_handrail(h);
+  const Scene scene = wall_with_handrail(HandrailKind::kPaperRound, Eigen::Vector3d(0, 0, 1), 0.55);
   DepthRenderer r(cam, all_off());
   std::vector<hal::DepthPoint> pts;
   r.render(scene, looking_at_wall(), 1, 0, &pts);
@@ -99,15 +105,7 @@ void test_bar_image_width(void**) {
 }
 
 Scene bar_on_wall(HandrailKind kind) {
-  Scene scene = wall_scene(0.6);
-  Handrail h;
-  h.kind = kind;
-  h.foot_center = Eigen::Vector3d(-0.6, 0, 0);
-  h.normal = Eigen::Vector3d(1, 0, 0);
-  h.axis = Eigen::Vector3d(0, 0, 1);
-  h.bar_length_m = 0.3;
-  scene.add_handrail(h);
-  return scene;
+  return wall_with_handrail(kind, Eigen::Vector3d(0, 0, 1), 0.3);
 }
 
 struct EffectCounts {
@@ -207,14 +205,8 @@ void test_noise_matches_its_model(void**) {
 
 void test_ground_truth(void**) {
   const CameraIntrinsics cam = pico_flexx_intrinsics();
-  Scene scene = wall_scene(0.6);
-  Handrail h;
-  h.kind = HandrailKind::kIss;
-  h.foot_center = Eigen::Vector3d(-0.6, 0, 0);
-  h.normal = Eigen::Vector3d(1, 0, 0);
-  h.axis = Eigen::Vector3d(0, 1, 0);  // horizontal in the image
-  h.bar_length_m = 0.55;
-  scene.add_handrail(h);
+  // Horizontal in the image.
+  const Scene scene = wall_with_handrail(HandrailKind::kIss, Eigen::Vector3d(0, 1, 0), 0.55);
   const FrameTruth t = compute_truth(scene, cam, looking_at_wall(), 3);
   assert_int_equal(t.handrails.size(), 1);
   const HandrailTruth& ht = t.handrails[0];

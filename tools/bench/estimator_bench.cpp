@@ -13,6 +13,7 @@
 #include "estimator/handrail_filters.hpp"
 #include "estimator/line_estimation.hpp"
 #include "estimator/plane_estimation.hpp"
+#include "frame_convert.hpp"
 #include "hal/pcd_io.hpp"
 
 #ifndef HRP_SOURCE_DIR
@@ -39,12 +40,7 @@ const Frame& frame(const char* name, bool round) {
     std::exit(1);
   }
   Frame* f = new Frame;
-  f->points.resize(pcd.points.size());
-  for (std::size_t i = 0; i < pcd.points.size(); ++i) {
-    const hal::DepthPoint& p = pcd.points[i];
-    f->points[i] = {p.x_m, p.y_m, p.z_m, p.noise_m, p.gray_value, p.confidence};
-  }
-  f->cloud = {0, 0, pcd.width, pcd.height, f->points.data()};
+  f->cloud = tools::to_estimator_cloud(pcd.view(), &f->points);
   f->cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);
   if (round) f->cfg.handrail = estimator::paper_round_handrail(0.55f);
   cache.push_back(f);

@@ -1,6 +1,5 @@
 #pragma once
 // Scoring detections against the simulator's ground truth, for hreval.
-#include <map>
 #include <string>
 #include <vector>
 
