@@ -21,19 +21,21 @@ Eigen::Vector3f point_of(const OrganizedCloud& cloud, std::int32_t i) {
 void HandrailDetector::run_basic(const OrganizedCloud& cloud, HandrailDetection* out) {
   const PlaneEstimate plane = estimate_plane(cloud, cfg_, rng_, ws_);
   if (!plane.found) {
+    clear_flags(cloud);
     out->status = DetectStatus::kNoPlane;
     return;
   }
   wall_ = plane.plane;
   // Per-pixel distances to the wall (the gap set itself is not used here).
-  out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_);
+  out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
 
   // Plane outliers in front of the wall (not behind it, not the far room).
   IndexList& outliers = ws_.gap;
   outliers.clear();
-  for (std::int32_t i : ws_.valid) {
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (!(ws_.flags[i] & kFlagValid)) continue;
     const float s = ws_.signed_distance_m[i];
-    if (s > 2.0f * cfg_.plane_inlier_m && s < 0.3f) outliers.push(i);
+    if (s > 2.0f * cfg_.plane_inlier_m && s < 0.3f) outliers.push(static_cast<std::int32_t>(i));
   }
   out->counts.gap = static_cast<std::uint32_t>(outliers.size());
   const std::size_t n = outliers.size();

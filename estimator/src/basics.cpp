@@ -38,7 +38,9 @@ const char* validate(const DetectorConfig& c) {
   if (!(h.bar_length_m > 0.05f && h.bar_length_m < 3.0f)) return "handrail.bar_length_m";
   if (!(c.min_range_m > 0.0f && c.max_range_m > c.min_range_m)) return "max_range_m";
   if (c.plane_iterations == 0 || c.plane_iterations > 10000) return "plane_iterations";
-  if (c.plane_score_samples < 50) return "plane_score_samples";
+  if (c.plane_score_samples < 50 || c.plane_score_samples > Workspace::kMaxScoreSamples) {
+    return "plane_score_samples";
+  }
   if (!(c.plane_inlier_m > 0.0f)) return "plane_inlier_m";
   if (!(c.plane_min_inlier_fraction > 0.0f && c.plane_min_inlier_fraction < 1.0f))
     return "plane_min_inlier_fraction";
@@ -48,6 +50,9 @@ const char* validate(const DetectorConfig& c) {
     return "side_width_max_ratio";
   if (!(c.run_peak_tolerance_m > 0.0f)) return "run_peak_tolerance_m";
   if (c.line_iterations == 0 || c.line_iterations > 10000) return "line_iterations";
+  if (c.line_score_samples < 50 || c.line_score_samples > Workspace::kMaxScoreSamples) {
+    return "line_score_samples";
+  }
   if (!(c.line_inlier_m > 0.0f)) return "line_inlier_m";
   if (c.line_attempts == 0 || c.line_attempts > 32) return "line_attempts";
   if (!(c.cluster_gap_m > 0.0f)) return "cluster_gap_m";
@@ -120,7 +125,7 @@ Workspace::Workspace(std::size_t n)
       signed_distance_m(new float[n]),
       flags(new std::uint8_t[n]),
       line_t_m(new float[n]),
-      valid(n),
+      sample(kMaxRefitSamples),
       gap(n),
       cross(n),
       side(n),
@@ -129,10 +134,20 @@ Workspace::Workspace(std::size_t n)
       band(n),
       values(new float[n]),
       wall_u_m(new float[n]),
-      wall_v_m(new float[n]) {}
+      wall_v_m(new float[n]),
+      run_width_m(new float[n]),
+      run_peak_m(new float[n]),
+      score_x_m(new float[kMaxScoreSamples]),
+      score_y_m(new float[kMaxScoreSamples]),
+      score_z_m(new float[kMaxScoreSamples]),
+      refit_x_m(new float[kMaxRefitSamples]),
+      refit_y_m(new float[kMaxRefitSamples]),
+      refit_z_m(new float[kMaxRefitSamples]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 5 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 8);
+  return max_pixels * (sizeof(float) * 7 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
+         3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
+         sizeof(std::int32_t) * kMaxRefitSamples;
 }
 
 }  // namespace estimator

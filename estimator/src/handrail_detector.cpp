@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
@@ -33,18 +34,10 @@ bool HandrailDetector::over_budget(std::int64_t start_us) const {
   return cfg_.budget_us > 0 && time_->now_us() - start_us > cfg_.budget_us;
 }
 
-void HandrailDetector::select_valid_points(const OrganizedCloud& cloud) {
-  const std::size_t n = cloud.size();
-  const float lo = cfg_.min_range_m, hi = cfg_.max_range_m;
-  ws_.valid.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    const CloudPoint& p = cloud.points[i];
-    const bool valid = is_valid_point(p) && p.z_m >= lo && p.z_m <= hi;
-    // Distances are written for valid pixels only; every reader checks the
-    // valid flag first, so the rest need no initialising.
-    ws_.flags[i] = valid ? kFlagValid : 0;
-    if (valid) ws_.valid.push(static_cast<std::int32_t>(i));
-  }
+// The flags are written afresh by the gap distance test; a frame that stops
+// before it must not leave the previous frame's in the debug view.
+void HandrailDetector::clear_flags(const OrganizedCloud& cloud) {
+  std::memset(ws_.flags.get(), 0, cloud.size());
 }
 
 void HandrailDetector::fill_pose(const Eigen::Vector3f& p_cam_center,
@@ -69,9 +62,11 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   } else {
     // Seeded from the frame id: a frame always gives the same answer.
     rng_.reseed(cfg_.seed ^ (cloud.frame_id * 0x9e3779b97f4a7c15ull));
-    select_valid_points(cloud);
-    out.counts.valid = static_cast<std::uint32_t>(ws_.valid.size());
-    if (ws_.valid.size() < 3) {
+    // Emptiness is judged on the lattice sample: a frame with fewer than
+    // three usable pixels in it has no wall to find.
+    out.counts.valid = static_cast<std::uint32_t>(sample_valid_points(cloud, cfg_, ws_));
+    if (ws_.sample.size() < 3) {
+      clear_flags(cloud);
       out.status = DetectStatus::kEmptyFrame;
     } else if (method == Method::kProposed) {
       run_proposed(cloud, start_us, &out);
@@ -127,9 +122,10 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
 
 void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t start_us,
                                     HandrailDetection* out) {
-  scale_ = estimate_pixel_scale(cloud, ws_.valid);
+  scale_ = estimate_pixel_scale(cloud, ws_.sample);
   const PlaneEstimate plane = estimate_plane(cloud, cfg_, rng_, ws_);
   if (!plane.found || !scale_.ok) {
+    clear_flags(cloud);
     out->status = DetectStatus::kNoPlane;
     return;
   }
@@ -140,7 +136,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     return;
   }
 
-  out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_);
+  out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
   cross_point_test(cloud, cfg_, wall_, scale_, ws_);
   side_width_test(cloud, cfg_, scale_, ws_);
   out->counts.gap = static_cast<std::uint32_t>(ws_.gap.size());

@@ -11,10 +11,25 @@ struct Pixel {
   int col;
 };
 
-Pixel pixel_of(const OrganizedCloud& cloud, std::int32_t i) {
-  const int w = static_cast<int>(cloud.width);
-  return {i / w, i % w};
-}
+// Row and column of pixel indices taken in ascending order (the order of
+// every list the stages produce) without an integer division per pixel:
+// the row only ever moves forward, at most `height` times per pass.
+class AscendingPixels {
+ public:
+  explicit AscendingPixels(const OrganizedCloud& cloud) : width_(static_cast<int>(cloud.width)) {}
+  Pixel operator()(std::int32_t i) {
+    while (i >= row_start_ + width_) {
+      ++row_;
+      row_start_ += width_;
+    }
+    return {row_, i - row_start_};
+  }
+
+ private:
+  int width_;
+  int row_ = 0;
+  std::int32_t row_start_ = 0;
+};
 
 bool inside(const OrganizedCloud& cloud, int row, int col) {
   return row >= 0 && col >= 0 && row < static_cast<int>(cloud.height) &&
@@ -29,7 +44,8 @@ int round_to_int(float x) {
 // A pixel's noise, bounded to [0, 2 cm]; NaN counts as 0 (comparisons with
 // NaN are false), so no bad value can open the windows.
 float clamp_noise(float noise_m) {
-  return noise_m >= 0.0f ? (noise_m < 0.02f ? noise_m : 0.02f) : 0.0f;
+  const float positive = noise_m > 0.0f ? noise_m : 0.0f;  // a max without a branch
+  return positive < 0.02f ? positive : 0.02f;
 }
 
 // Probes for the wall `offset_px` pixels away along (drow, dcol). A probe
@@ -52,32 +68,39 @@ bool probe_on_wall(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, in
 struct RaisedRun {
   float width_m = -1.0f;  // < 0: the run leaves the image, width unknown
   float peak_m = 0.0f;    // its highest point's distance from the wall
+  int first = 0;          // its first and last pixel along the walk
+  int last = -1;
 };
 
-// The raised run through q along (drow, dcol): the 3-D distance between its
-// two outermost raised pixels, plus one pixel's footprint since each
-// outermost pixel centre lies half a pixel inside the silhouette; and its
-// highest point above the wall.
-RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, int drow,
-                             int dcol, int max_steps, float raised_min_m, float footprint_m) {
-  const int w = static_cast<int>(cloud.width);
+bool is_raised(const Workspace& ws, std::int32_t i, float raised_min_m) {
+  return (ws.flags[i] & kFlagValid) && ws.signed_distance_m[i] >= raised_min_m;
+}
+
+// The whole raised run through pixel `k` of a line of `n` pixels starting
+// at `base` with stride `stride` (a row or a column): the 3-D distance
+// between its two outermost raised pixels, plus one pixel's footprint since
+// each outermost pixel centre lies half a pixel inside the silhouette; and
+// its highest point above the wall. A run that reaches the image's edge has
+// no known width. Measured once per run: every pixel of a run shares it.
+RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, std::int32_t base,
+                             int stride, int n, int k, float raised_min_m, float pixel_angle) {
   RaisedRun run;
-  run.peak_m = ws.signed_distance_m[q.row * w + q.col];
-  Pixel ends[2] = {q, q};
-  for (int side = 0; side < 2; ++side) {
-    const int sign = side == 0 ? -1 : 1;
-    for (int k = 1; k <= max_steps; ++k) {
-      const int r = q.row + sign * drow * k, c = q.col + sign * dcol * k;
-      if (!inside(cloud, r, c)) return run;
-      const std::int32_t i = r * w + c;
-      if (!(ws.flags[i] & kFlagValid) || ws.signed_distance_m[i] < raised_min_m) break;
-      run.peak_m = std::max(run.peak_m, ws.signed_distance_m[i]);
-      ends[side] = {r, c};
-    }
+  run.first = k;
+  while (run.first > 0 && is_raised(ws, base + (run.first - 1) * stride, raised_min_m)) {
+    --run.first;
   }
-  const CloudPoint& a = cloud.at(ends[0].row, ends[0].col);
-  const CloudPoint& b = cloud.at(ends[1].row, ends[1].col);
+  run.last = k;
+  while (run.last < n - 1 && is_raised(ws, base + (run.last + 1) * stride, raised_min_m)) {
+    ++run.last;
+  }
+  for (int j = run.first; j <= run.last; ++j) {
+    run.peak_m = std::max(run.peak_m, ws.signed_distance_m[base + j * stride]);
+  }
+  if (run.first == 0 || run.last == n - 1) return run;
+  const CloudPoint& a = cloud.points[base + run.first * stride];
+  const CloudPoint& b = cloud.points[base + run.last * stride];
   const float dx = a.x_m - b.x_m, dy = a.y_m - b.y_m, dz = a.z_m - b.z_m;
+  const float footprint_m = 0.5f * (a.z_m + b.z_m) * pixel_angle;
   run.width_m = std::sqrt(dx * dx + dy * dy + dz * dz) + footprint_m;
   return run;
 }
@@ -85,26 +108,48 @@ RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, P
 }  // namespace
 
 std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                const Plane& wall, Workspace& ws) {
+                                const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels) {
   const float lo = gap_min_m(cfg), hi = gap_max_m(cfg);
   const float nx = wall.normal.x(), ny = wall.normal.y(), nz = wall.normal.z(), d = wall.d;
+  const float min_range = cfg.min_range_m, max_range = cfg.max_range_m;
+  const std::size_t n = cloud.size();
+  // The one pass over every pixel, so it does all per-pixel work at once:
+  // validity, the flags, the distance to the wall, and the gap list.
+  // Invalid pixels are scattered over a ToF frame, so the loop has no
+  // branches: it writes every index and advances the list's count only
+  // when the pixel belongs (the list has a slot per pixel). An invalid
+  // pixel's distance is written too (possibly NaN) but every reader checks
+  // the valid flag first.
+  // Everything the loop reads is in locals: its byte-sized flag stores
+  // could alias any member, which would force reloads every pixel.
+  const CloudPoint* points = cloud.points;
+  float* distance_out = ws.signed_distance_m.get();
+  std::uint8_t* flags_out = ws.flags.get();
+  std::int32_t* gap_out = ws.gap.begin();
+  const float plane_inlier = cfg.plane_inlier_m;
+  std::size_t valid_count = 0, gap_count = 0;
   std::uint32_t plane_inliers = 0;
-  ws.gap.clear();
-  for (std::int32_t i : ws.valid) {
-    const CloudPoint& p = cloud.points[i];
+  for (std::size_t k = 0; k < n; ++k) {
+    const CloudPoint& p = points[k];
     const float s = nx * p.x_m + ny * p.y_m + nz * p.z_m + d;
-    ws.signed_distance_m[i] = s;
-    if (std::fabs(s) < cfg.plane_inlier_m) {
-      ws.flags[i] |= kFlagPlane;
-      ++plane_inliers;
-    }
+    // is_usable_point() in fewer steps: a NaN or infinite coordinate makes
+    // s NaN (s == s fails), and the range test (min_range > 0) rejects a
+    // NaN, infinite or non-positive z.
+    const bool valid = (p.confidence != 0) & (p.z_m >= min_range) & (p.z_m <= max_range) & (s == s);
+    distance_out[k] = s;
+    const bool on_plane = valid & (std::fabs(s) < plane_inlier);
     // A noisy pixel gets a wider window, by twice its own standard deviation.
     const float widen = 2.0f * clamp_noise(p.noise_m);
-    if (s >= lo - widen && s <= hi + widen) {
-      ws.flags[i] |= kFlagGap;
-      ws.gap.push(i);
-    }
+    const bool in_gap = valid & (s >= lo - widen) & (s <= hi + widen);
+    flags_out[k] = static_cast<std::uint8_t>((valid ? kFlagValid : 0) |
+                                             (on_plane ? kFlagPlane : 0) | (in_gap ? kFlagGap : 0));
+    valid_count += valid ? 1u : 0u;
+    gap_out[gap_count] = static_cast<std::int32_t>(k);
+    gap_count += in_gap ? 1u : 0u;
+    plane_inliers += on_plane ? 1u : 0u;
   }
+  ws.gap.set_size(gap_count);
+  *valid_pixels = static_cast<std::uint32_t>(valid_count);
   return plane_inliers;
 }
 
@@ -122,14 +167,19 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
   const float y_plus = std::fmax(d_c * std::cos(phi) - (l_h + d_c) * std::sin(phi), d_c);
   const float y_minus = std::fmax(d_c * std::cos(phi) + (l_h + d_c) * std::sin(phi), d_c);
 
+  // Offsets in pixels are (focal length * metres) / depth: one division per
+  // pixel.
+  const float fx_plus = scale.fx_px * x_plus, fx_minus = scale.fx_px * x_minus;
+  const float fy_plus = scale.fy_px * y_plus, fy_minus = scale.fy_px * y_minus;
   ws.cross.clear();
+  AscendingPixels pixel_of(cloud);
   for (std::int32_t i : ws.gap) {
-    const Pixel q = pixel_of(cloud, i);
-    const float z = cloud.points[i].z_m;
-    const int xp = round_to_int(scale.px_x(x_plus, z));
-    const int xm = round_to_int(scale.px_x(x_minus, z));
-    const int yp = round_to_int(scale.px_y(y_plus, z));
-    const int ym = round_to_int(scale.px_y(y_minus, z));
+    const Pixel q = pixel_of(i);
+    const float inv_z = 1.0f / cloud.points[i].z_m;
+    const int xp = round_to_int(fx_plus * inv_z);
+    const int xm = round_to_int(fx_minus * inv_z);
+    const int yp = round_to_int(fy_plus * inv_z);
+    const int ym = round_to_int(fy_minus * inv_z);
     const float tol = cfg.wall_tolerance_m;
     const bool x_ok =
         probe_on_wall(cloud, ws, q, 0, 1, xp, tol) && probe_on_wall(cloud, ws, q, 0, -1, xm, tol);
@@ -148,27 +198,45 @@ void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
   const float width_max = cfg.side_width_max_ratio * std::fmax(h.bar_width_m, h.bar_depth_m);
   const float raised_min = gap_min_m(cfg);
   const float front = h.bar_center_offset_m + 0.5f * h.bar_depth_m;
+  const int w = static_cast<int>(cloud.width), rows = static_cast<int>(cloud.height);
+  // Cross points come in row-major order, so one remembered row run serves
+  // all its pixels; column runs are noted per pixel (kFlagRunY).
+  RaisedRun row_run;
+  int row_run_row = -1;
   ws.side.clear();
+  AscendingPixels pixel_of(cloud);
   for (std::int32_t i : ws.cross) {
-    const Pixel q = pixel_of(cloud, i);
-    const float z = cloud.points[i].z_m;
+    const Pixel q = pixel_of(i);
     // The run's peak is the bar's front face (or a round bar's crown); a
     // cable or pipe of similar width at another height fails here. Noise
     // lifts the highest of a few samples, hence the pixel's sigma.
     const float peak_tolerance =
         cfg.run_peak_tolerance_m + 2.0f * clamp_noise(cloud.points[i].noise_m);
-    auto passes = [&](const RaisedRun& run) {
-      return run.width_m > width_min && run.width_m < width_max &&
-             std::fabs(run.peak_m - front) < peak_tolerance;
+    auto passes = [&](float width_m, float peak_m) {
+      return width_m > width_min && width_m < width_max &&
+             std::fabs(peak_m - front) < peak_tolerance;
     };
     bool pass = false;
     if (ws.flags[i] & kFlagCrossX) {
-      const int steps = static_cast<int>(std::ceil(scale.px_x(width_max, z))) + 1;
-      pass = passes(measure_raised_run(cloud, ws, q, 0, 1, steps, raised_min, z / scale.fx_px));
+      if (q.row != row_run_row || q.col < row_run.first || q.col > row_run.last) {
+        row_run =
+            measure_raised_run(cloud, ws, q.row * w, 1, w, q.col, raised_min, 1.0f / scale.fx_px);
+        row_run_row = q.row;
+      }
+      pass = passes(row_run.width_m, row_run.peak_m);
     }
     if (!pass && (ws.flags[i] & kFlagCrossY)) {
-      const int steps = static_cast<int>(std::ceil(scale.px_y(width_max, z))) + 1;
-      pass = passes(measure_raised_run(cloud, ws, q, 1, 0, steps, raised_min, z / scale.fy_px));
+      if (!(ws.flags[i] & kFlagRunY)) {
+        const RaisedRun run =
+            measure_raised_run(cloud, ws, q.col, w, rows, q.row, raised_min, 1.0f / scale.fy_px);
+        for (int r = run.first; r <= run.last; ++r) {
+          const std::int32_t j = r * w + q.col;
+          ws.flags[j] |= kFlagRunY;
+          ws.run_width_m[j] = run.width_m;
+          ws.run_peak_m[j] = run.peak_m;
+        }
+      }
+      pass = passes(ws.run_width_m[i], ws.run_peak_m[i]);
     }
     if (pass) {
       ws.flags[i] |= kFlagSide;

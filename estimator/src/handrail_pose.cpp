@@ -1,5 +1,7 @@
 #include "estimator/handrail_pose.hpp"
 
+#include "estimator/moments.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -11,6 +13,34 @@ namespace {
 Eigen::Vector3f point_of(const OrganizedCloud& cloud, std::int32_t i) {
   const CloudPoint& p = cloud.points[i];
   return {p.x_m, p.y_m, p.z_m};
+}
+
+// A point's coordinate along unit direction e after projecting it onto the
+// wall, relative to an origin on the wall: (p - s n - o) . e for wall
+// distance s, folded into four constants.
+struct LinearForm {
+  float ex, ey, ez, en, e0;
+  LinearForm(const Eigen::Vector3f& e, const Eigen::Vector3f& n, const Eigen::Vector3f& o)
+      : ex(e.x()), ey(e.y()), ez(e.z()), en(e.dot(n)), e0(e.dot(o)) {}
+  float operator()(const CloudPoint& p, float s) const {
+    return ex * p.x_m + ey * p.y_m + ez * p.z_m - s * en - e0;
+  }
+};
+
+// Smallest and largest coordinate of the points along `axis` from `origin`.
+void inlier_extent(const OrganizedCloud& cloud, const IndexList& inliers,
+                   const Eigen::Vector3f& origin, const Eigen::Vector3f& axis, float* t_min,
+                   float* t_max) {
+  const float ax = axis.x(), ay = axis.y(), az = axis.z(), a0 = axis.dot(origin);
+  float lo = INFINITY, hi = -INFINITY;
+  for (std::int32_t i : inliers) {
+    const CloudPoint& p = cloud.points[i];
+    const float t = ax * p.x_m + ay * p.y_m + az * p.z_m - a0;
+    lo = t < lo ? t : lo;
+    hi = t > hi ? t : hi;
+  }
+  *t_min = lo;
+  *t_max = hi;
 }
 
 }  // namespace
@@ -65,44 +95,46 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   if (n < 3) return false;
   const Eigen::Vector3f& normal = wall.normal;
 
+  const float nx = normal.x(), ny = normal.y(), nz = normal.z(), nd = wall.d;
+
   // Direction: principal axis of the inliers projected onto the wall.
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (std::int32_t i : inliers) {
-    const Eigen::Vector3f p = point_of(cloud, i);
-    mean += (p - wall.signed_distance(p) * normal).cast<double>();
+  PointMoments on_wall;
+  {
+    const CloudPoint& p0 = cloud.points[inliers[0]];
+    on_wall.set_reference(p0.x_m, p0.y_m, p0.z_m);
   }
-  mean /= static_cast<double>(n);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (std::int32_t i : inliers) {
-    const Eigen::Vector3f p = point_of(cloud, i);
-    const Eigen::Vector3d q = (p - wall.signed_distance(p) * normal).cast<double>() - mean;
-    cov.noalias() += q * q.transpose();
+    const CloudPoint& p = cloud.points[i];
+    const float s = nx * p.x_m + ny * p.y_m + nz * p.z_m + nd;
+    on_wall.add(p.x_m - s * nx, p.y_m - s * ny, p.z_m - s * nz);
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  solver.computeDirect(cov);
+  solver.computeDirect(on_wall.covariance());
   const Eigen::Vector3f direction = solver.eigenvectors().col(2).cast<float>();
   if (!direction.allFinite()) return false;
   Eigen::Matrix3f R = handrail_frame(normal, direction);
   Eigen::Vector3f axis = R.col(2);
   Eigen::Vector3f across = R.col(1);
-  const Eigen::Vector3f origin = mean.cast<float>();
+  const Eigen::Vector3f origin = on_wall.mean().cast<float>();
 
   float t_min = 0.0f, t_max = 0.0f;
-  for (std::size_t k = 0; k < n; ++k) {
-    const float t = (point_of(cloud, inliers[k]) - origin).dot(axis);
-    t_min = k == 0 ? t : std::min(t_min, t);
-    t_max = k == 0 ? t : std::max(t_max, t);
-  }
+  inlier_extent(cloud, inliers, origin, axis, &t_min, &t_max);
 
   // Every raised pixel (the gap set) in a generous band around the line:
   // the cross test may have dropped a whole edge of the bar (a probe landing
-  // on a cable), so its inliers alone could favour one face.
+  // on a cable), so its inliers alone could favour one face. A pixel's
+  // coordinates along and across the line, after projection onto the wall,
+  // are linear in the point and its wall distance s.
   const float band_m = 0.5f * cfg.handrail.bar_width_m + 0.02f;
-  ws.band.clear();
-  for (std::int32_t i : ws.gap) {
-    const Eigen::Vector3f q = point_of(cloud, i) - ws.signed_distance_m[i] * normal - origin;
-    const float t = q.dot(axis);
-    if (t >= t_min && t <= t_max && std::fabs(q.dot(across)) <= band_m) ws.band.push(i);
+  {
+    const LinearForm along(axis, normal, origin), side(across, normal, origin);
+    ws.band.clear();
+    for (std::int32_t i : ws.gap) {
+      const CloudPoint& p = cloud.points[i];
+      const float s = ws.signed_distance_m[i];
+      const float t = along(p, s);
+      if (t >= t_min && t <= t_max && std::fabs(side(p, s)) <= band_m) ws.band.push(i);
+    }
   }
   const float front = front_face_height(cfg, ws, ws.band.size());
   if (!std::isfinite(front)) return false;
@@ -113,33 +145,31 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   // (flying) pixels at the bar's edges rarely reach that height. Refit the
   // direction to them, then take the middle of their spread across the bar
   // (2nd to 98th percentile).
-  const float front_band_m = 0.3f * cfg.handrail.bar_depth_m;
-  Eigen::Vector3d band_mean = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d band_cov = Eigen::Matrix3d::Zero();
-  std::size_t m = 0;
+  const float front_min_m = front - 0.3f * cfg.handrail.bar_depth_m;
+  PointMoments front_face;
+  front_face.set_reference(origin.x(), origin.y(), origin.z());
   for (std::int32_t i : ws.band) {
-    if (ws.signed_distance_m[i] < front - front_band_m) continue;
-    const Eigen::Vector3d q =
-        (point_of(cloud, i) - ws.signed_distance_m[i] * normal).cast<double>();
-    band_mean += q;
-    band_cov.noalias() += q * q.transpose();
-    ++m;
+    const float s = ws.signed_distance_m[i];
+    if (s < front_min_m) continue;
+    const CloudPoint& p = cloud.points[i];
+    front_face.add(p.x_m - s * nx, p.y_m - s * ny, p.z_m - s * nz);
   }
-  if (m < 3) return false;
-  band_mean /= static_cast<double>(m);
-  band_cov = band_cov / static_cast<double>(m) - band_mean * band_mean.transpose();
-  solver.computeDirect(band_cov);
+  if (front_face.n < 3.0) return false;
+  solver.computeDirect(front_face.covariance());
   const Eigen::Vector3f band_direction = solver.eigenvectors().col(2).cast<float>();
   if (band_direction.allFinite()) {
     R = handrail_frame(normal, band_direction);
     axis = R.col(2);
     across = R.col(1);
   }
-  m = 0;
-  for (std::int32_t i : ws.band) {
-    if (ws.signed_distance_m[i] < front - front_band_m) continue;
-    const Eigen::Vector3f q = point_of(cloud, i) - ws.signed_distance_m[i] * normal - origin;
-    ws.values[m++] = q.dot(across);
+  std::size_t m = 0;
+  {
+    const LinearForm side(across, normal, origin);
+    for (std::int32_t i : ws.band) {
+      const float s = ws.signed_distance_m[i];
+      if (s < front_min_m) continue;
+      ws.values[m++] = side(cloud.points[i], s);
+    }
   }
   float* v = ws.values.get();
   const std::size_t lo = m * 2 / 100, hi = m - 1 - m * 2 / 100;
@@ -148,11 +178,7 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   std::nth_element(v, v + hi, v + m);
   const float offset_across = 0.5f * (b_lo + v[hi]);
   // The inliers' extent along the refined axis.
-  for (std::size_t k = 0; k < n; ++k) {
-    const float t = (point_of(cloud, inliers[k]) - origin).dot(axis);
-    t_min = k == 0 ? t : std::min(t_min, t);
-    t_max = k == 0 ? t : std::max(t_max, t);
-  }
+  inlier_extent(cloud, inliers, origin, axis, &t_min, &t_max);
 
   line->axis = axis;
   line->point = origin + offset_across * across + cfg.handrail.bar_center_offset_m * normal;

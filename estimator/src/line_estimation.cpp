@@ -61,7 +61,7 @@ void project_to_wall(const OrganizedCloud& cloud, const Plane& wall, Workspace& 
 }
 
 void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                  const Plane& wall, Random& rng, const Workspace& ws,
+                                  const Plane& wall, Random& rng, Workspace& ws,
                                   const IndexList& pts, LineModel candidates[2]) {
   (void)cloud;
   candidates[0] = LineModel{};
@@ -71,7 +71,17 @@ void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorCon
   const WallBasis basis(wall);
   const float* u = ws.wall_u_m.get();
   const float* v = ws.wall_v_m.get();
-  const std::size_t step = n > cfg.line_score_samples ? n / cfg.line_score_samples : 1;
+  // The scoring subsample, copied into contiguous arrays.
+  const std::size_t capacity =
+      std::min<std::size_t>(cfg.line_score_samples, Workspace::kMaxScoreSamples);
+  const std::size_t step = (n + capacity - 1) / capacity;
+  float* score_u = ws.score_x_m.get();
+  float* score_v = ws.score_y_m.get();
+  std::size_t m = 0;
+  for (std::size_t k = 0; k < n; k += step, ++m) {
+    score_u[m] = u[pts[k]];
+    score_v[m] = v[pts[k]];
+  }
   const std::uint32_t n32 = static_cast<std::uint32_t>(n);
   // Two samples closer than this give a poorly defined direction.
   const float min_separation_m = 2.0f * cfg.handrail.bar_width_m;
@@ -85,8 +95,8 @@ void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorCon
     if (separation < min_separation_m) continue;
     const Line2 line{u[a], v[a], du / separation, dv / separation};
     std::uint32_t score = 0;
-    for (std::size_t k = 0; k < n; k += step) {
-      score += line.distance(u[pts[k]], v[pts[k]]) < cfg.line_inlier_m;
+    for (std::size_t k = 0; k < m; ++k) {
+      score += line.distance(score_u[k], score_v[k]) < cfg.line_inlier_m ? 1u : 0u;
     }
     const float psi_new = line_angle_psi(basis.direction_3d(line.du, line.dv));
     const int slot = std::fabs(psi_new - psi[0]) <= std::fabs(psi_new - psi[1]) ? 0 : 1;

@@ -1,16 +1,14 @@
 #include "estimator/plane_estimation.hpp"
 
+#include "estimator/moments.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace estimator {
 namespace {
-
-Eigen::Vector3f point_of(const OrganizedCloud& cloud, std::int32_t i) {
-  const CloudPoint& p = cloud.points[i];
-  return {p.x_m, p.y_m, p.z_m};
-}
 
 bool plane_from_triple(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
                        Plane* plane) {
@@ -24,21 +22,65 @@ bool plane_from_triple(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const
   return true;
 }
 
-// The valid pixels within the distance of the plane, into out, taking
-// every step-th: a few thousand points fix a plane far better than the
-// noise, and the refits need no more.
-void gather_inliers(const OrganizedCloud& cloud, const IndexList& valid, const Plane& plane,
-                    float max_distance_m, std::size_t step, IndexList& out) {
-  out.clear();
-  for (std::size_t k = 0; k < valid.size(); k += step) {
-    const std::int32_t i = valid[k];
-    if (std::fabs(plane.signed_distance(point_of(cloud, i))) < max_distance_m) out.push(i);
+// The plane through the moments' centroid normal to their direction of
+// least spread, oriented so that the camera (the origin) is on its
+// positive side.
+bool plane_from_moments(const PointMoments& m, Plane* plane) {
+  if (m.n < 3.0) return false;
+  const Eigen::Matrix3d cov = m.covariance();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(cov);
+  Eigen::Vector3d normal = solver.eigenvectors().col(0);
+  if (!normal.allFinite() || normal.norm() < 0.5) return false;
+  normal.normalize();
+  double d = -normal.dot(m.mean());
+  if (d < 0.0) {
+    normal = -normal;
+    d = -d;
   }
+  plane->normal = normal.cast<float>();
+  plane->d = static_cast<float>(d);
+  return true;
 }
 
-constexpr std::size_t kRefitPoints = 6000;
-std::size_t step_for(std::size_t n) {
-  return n > kRefitPoints ? n / kRefitPoints : 1;
+// Every step-th point of the refit set into the scoring arrays.
+std::size_t gather_score_subsample(const Workspace& ws, std::size_t m_refit, std::size_t capacity) {
+  const std::size_t step = (m_refit + capacity - 1) / capacity;
+  std::size_t m = 0;
+  for (std::size_t k = 0; k < m_refit; k += step, ++m) {
+    ws.score_x_m[m] = ws.refit_x_m[k];
+    ws.score_y_m[m] = ws.refit_y_m[k];
+    ws.score_z_m[m] = ws.refit_z_m[k];
+  }
+  return m;
+}
+
+// RANSAC's score: how many points lie within the inlier distance. Written
+// without branches over plain arrays so that the compiler vectorises it.
+std::uint32_t count_plane_inliers(const Plane& plane, const float* x, const float* y,
+                                  const float* z, std::size_t m, float max_distance_m) {
+  const float a = plane.normal.x(), b = plane.normal.y(), c = plane.normal.z(), d = plane.d;
+  std::uint32_t score = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    score += std::fabs(a * x[k] + b * y[k] + c * z[k] + d) < max_distance_m ? 1u : 0u;
+  }
+  return score;
+}
+
+// The least-squares plane through the points within the distance of
+// `plane`; `inliers` is how many there were.
+bool refit_plane(const float* x, const float* y, const float* z, std::size_t m,
+                 float max_distance_m, Plane* plane, std::uint32_t* inliers) {
+  const float a = plane->normal.x(), b = plane->normal.y(), c = plane->normal.z(), d = plane->d;
+  PointMoments moments;
+  moments.set_reference(x[0], y[0], z[0]);
+  for (std::size_t k = 0; k < m; ++k) {
+    if (std::fabs(a * x[k] + b * y[k] + c * z[k] + d) < max_distance_m) {
+      moments.add(x[k], y[k], z[k]);
+    }
+  }
+  *inliers = static_cast<std::uint32_t>(moments.n);
+  return plane_from_moments(moments, plane);
 }
 
 }  // namespace
@@ -46,82 +88,81 @@ std::size_t step_for(std::size_t n) {
 bool fit_plane_least_squares(const OrganizedCloud& cloud, const std::int32_t* indices,
                              std::size_t count, Plane* plane) {
   if (count < 3) return false;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < count; ++k) mean += point_of(cloud, indices[k]).cast<double>();
-  mean /= static_cast<double>(count);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  PointMoments moments;
+  const CloudPoint& ref = cloud.points[indices[0]];
+  moments.set_reference(ref.x_m, ref.y_m, ref.z_m);
   for (std::size_t k = 0; k < count; ++k) {
-    const Eigen::Vector3d q = point_of(cloud, indices[k]).cast<double>() - mean;
-    cov.noalias() += q * q.transpose();
+    const CloudPoint& p = cloud.points[indices[k]];
+    moments.add(p.x_m, p.y_m, p.z_m);
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  solver.computeDirect(cov);
-  Eigen::Vector3d n = solver.eigenvectors().col(0);
-  if (!n.allFinite() || n.norm() < 0.5) return false;
-  n.normalize();
-  double d = -n.dot(mean);
-  // Keep the camera (the origin) on the positive side.
-  if (d < 0.0) {
-    n = -n;
-    d = -d;
+  return plane_from_moments(moments, plane);
+}
+
+std::size_t sample_valid_points(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                Workspace& ws) {
+  const std::size_t n = cloud.size();
+  // Every step-th pixel in raster order: a lattice over the whole frame.
+  const std::size_t step = (n + Workspace::kMaxRefitSamples - 1) / Workspace::kMaxRefitSamples;
+  ws.sample.clear();
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; i += step) {
+    const CloudPoint& p = cloud.points[i];
+    if (!is_usable_point(p, cfg.min_range_m, cfg.max_range_m)) continue;
+    ws.sample.push(static_cast<std::int32_t>(i));
+    ws.refit_x_m[m] = p.x_m;
+    ws.refit_y_m[m] = p.y_m;
+    ws.refit_z_m[m] = p.z_m;
+    ++m;
   }
-  plane->normal = n.cast<float>();
-  plane->d = static_cast<float>(d);
-  return true;
+  return m;
 }
 
 PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& cfg, Random& rng,
                              Workspace& ws) {
   PlaneEstimate result;
-  const IndexList& valid = ws.valid;
-  const std::size_t n = valid.size();
-  if (n < 3) return result;
-  const std::size_t step = n > cfg.plane_score_samples ? n / cfg.plane_score_samples : 1;
-  const std::uint32_t n_valid = static_cast<std::uint32_t>(n);
+  const std::size_t m_refit = ws.sample.size();
+  if (m_refit < 3) return result;
+  // The refits use the whole sample (a few thousand points, far more than
+  // the noise needs); hypotheses are scored on a few hundred of them.
+  const std::size_t m_score = gather_score_subsample(
+      ws, m_refit, std::min<std::size_t>(cfg.plane_score_samples, Workspace::kMaxScoreSamples));
+  const float* rx = ws.refit_x_m.get();
+  const float* ry = ws.refit_y_m.get();
+  const float* rz = ws.refit_z_m.get();
+  const std::uint32_t m32 = static_cast<std::uint32_t>(m_refit);
 
   Plane best;
-  std::uint32_t best_score = 0, scored = 0;
+  std::uint32_t best_score = 0;
   for (std::uint32_t it = 0; it < cfg.plane_iterations; ++it) {
+    const std::uint32_t i = rng.below(m32), j = rng.below(m32), k = rng.below(m32);
     Plane hypothesis;
-    if (!plane_from_triple(point_of(cloud, valid[rng.below(n_valid)]),
-                           point_of(cloud, valid[rng.below(n_valid)]),
-                           point_of(cloud, valid[rng.below(n_valid)]), &hypothesis)) {
+    if (!plane_from_triple({rx[i], ry[i], rz[i]}, {rx[j], ry[j], rz[j]}, {rx[k], ry[k], rz[k]},
+                           &hypothesis)) {
       continue;
     }
-    std::uint32_t score = 0, total = 0;
-    for (std::size_t k = 0; k < n; k += step, ++total) {
-      score +=
-          std::fabs(hypothesis.signed_distance(point_of(cloud, valid[k]))) < cfg.plane_inlier_m;
-    }
+    const std::uint32_t score =
+        count_plane_inliers(hypothesis, ws.score_x_m.get(), ws.score_y_m.get(), ws.score_z_m.get(),
+                            m_score, cfg.plane_inlier_m);
     if (score > best_score) {
       best_score = score;
       best = hypothesis;
     }
-    scored = total;
   }
-  if (scored == 0 || best_score < cfg.plane_min_inlier_fraction * static_cast<float>(scored)) {
-    return result;
-  }
+  if (best_score < cfg.plane_min_inlier_fraction * static_cast<float>(m_score)) return result;
 
   // Two refits: the second one sees inliers of a plane no longer tilted by
-  // the triple's noise.
+  // the triple's noise. The per-pixel distances are written later, by the
+  // gap distance test in its single pass over the frame.
+  std::uint32_t support = 0;
   for (int pass = 0; pass < 2; ++pass) {
-    gather_inliers(cloud, valid, best, cfg.plane_inlier_m, step_for(n), ws.scratch);
-    if (!fit_plane_least_squares(cloud, ws.scratch.begin(), ws.scratch.size(), &best)) {
-      return result;
-    }
+    if (!refit_plane(rx, ry, rz, m_refit, cfg.plane_inlier_m, &best, &support)) return result;
   }
   if (best.d < 0.0f) return result;
-
-  // Support, judged on the last refit's subsample: the per-pixel distances
-  // are written by the gap distance test, in its single pass over the frame.
-  const std::size_t sampled = (n + step_for(n) - 1) / step_for(n);
-  const float support = static_cast<float>(ws.scratch.size()) / static_cast<float>(sampled);
-  if (support < cfg.plane_min_inlier_fraction) return result;
-  const std::uint32_t inliers = static_cast<std::uint32_t>(support * static_cast<float>(n));
+  const float fraction = static_cast<float>(support) / static_cast<float>(m_refit);
+  if (fraction < cfg.plane_min_inlier_fraction) return result;
   result.found = true;
   result.plane = best;
-  result.inliers = inliers;
+  result.inliers = static_cast<std::uint32_t>(fraction * static_cast<float>(cloud.size()));
   return result;
 }
 

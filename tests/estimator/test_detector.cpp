@@ -208,7 +208,7 @@ void test_working_memory_is_bounded(void**) {
   const Workspace ws(224 * 171);
   print_message("workspace for 224 x 171: %zu bytes\n", ws.bytes());
   assert_true(ws.bytes() <= 4u * 1024u * 1024u);
-  assert_int_equal(ws.valid.capacity(), 224 * 171);
+  assert_int_equal(ws.gap.capacity(), 224 * 171);
 }
 
 void test_basic_method_runs(void**) {

@@ -37,20 +37,14 @@ SyntheticScene bar_scene(double noise = 0.0) {
 // Runs the stages up to the filters on a scene; returns the wall.
 Plane run_filters(const OrganizedCloud& cloud, const DetectorConfig& cfg, Workspace& ws,
                   PixelScale* scale) {
-  ws.valid.clear();
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    ws.flags[i] = 0;
-    ws.signed_distance_m[i] = NAN;
-    if (is_valid_point(cloud.points[i])) {
-      ws.flags[i] = kFlagValid;
-      ws.valid.push(static_cast<std::int32_t>(i));
-    }
-  }
+  assert_true(sample_valid_points(cloud, cfg, ws) > 1000);
   Random rng(7);
-  *scale = estimate_pixel_scale(cloud, ws.valid);
+  *scale = estimate_pixel_scale(cloud, ws.sample);
   const PlaneEstimate plane = estimate_plane(cloud, cfg, rng, ws);
   assert_true(plane.found);
-  assert_true(gap_distance_test(cloud, cfg, plane.plane, ws) > 0);
+  std::uint32_t valid_pixels = 0;
+  assert_true(gap_distance_test(cloud, cfg, plane.plane, ws, &valid_pixels) > 0);
+  assert_true(valid_pixels > cloud.size() / 2);
   cross_point_test(cloud, cfg, plane.plane, *scale, ws);
   side_width_test(cloud, cfg, *scale, ws);
   return plane.plane;
@@ -61,8 +55,9 @@ void test_pixel_scale_recovers_projection(void**) {
   std::vector<CloudPoint> pts;
   const OrganizedCloud cloud = testing_support::render(s, &pts);
   Workspace ws(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) ws.valid.push(static_cast<std::int32_t>(i));
-  const PixelScale scale = estimate_pixel_scale(cloud, ws.valid);
+  IndexList all(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) all.push(static_cast<std::int32_t>(i));
+  const PixelScale scale = estimate_pixel_scale(cloud, all);
   assert_true(scale.ok);
   assert_near(scale.fx_px, s.f_px, 0.01);
   assert_near(scale.cx_px, s.cx, 0.01);
@@ -80,10 +75,7 @@ void test_plane_fronto_parallel_and_tilted(void**) {
     std::vector<CloudPoint> pts;
     const OrganizedCloud cloud = testing_support::render(s, &pts);
     Workspace ws(cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      ws.flags[i] = kFlagValid;
-      ws.valid.push(static_cast<std::int32_t>(i));
-    }
+    sample_valid_points(cloud, cfg, ws);
     Random rng(3);
     const PlaneEstimate p = estimate_plane(cloud, cfg, rng, ws);
     assert_true(p.found);
@@ -109,7 +101,7 @@ void test_plane_fails_without_support(void**) {
   }
   OrganizedCloud cloud{0, 0, 160, 120, pts.data()};
   Workspace ws(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) ws.valid.push(static_cast<std::int32_t>(i));
+  sample_valid_points(cloud, test_config(), ws);
   Random rng(3);
   assert_false(estimate_plane(cloud, test_config(), rng, ws).found);
 }

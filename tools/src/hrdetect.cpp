@@ -110,7 +110,7 @@ void write_debug_pictures(const std::string& dir, const std::string& name,
       {"f_line", "F LINE AND ENDS", estimator::kFlagLine, {220, 40, 40}},
   };
   std::string error;
-  const estimator::PixelScale scale = estimator::estimate_pixel_scale(cloud, ws.valid);
+  const estimator::PixelScale scale = estimator::estimate_pixel_scale(cloud, ws.sample);
   auto project = [&](const Eigen::Vector3d& p, Eigen::Vector2d* px) {
     if (!scale.ok || p.z() <= 1e-6) return false;
     *px = {scale.cx_px + scale.fx_px * p.x() / p.z(), scale.cy_px + scale.fy_px * p.y() / p.z()};

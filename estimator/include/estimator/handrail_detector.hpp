@@ -48,7 +48,7 @@ class HandrailDetector {
 
  private:
   bool over_budget(std::int64_t start_us) const;
-  void select_valid_points(const OrganizedCloud& cloud);
+  void clear_flags(const OrganizedCloud& cloud);
   void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
   // Cluster, front height, centre line, ends and length of one line.
   LineVerdict verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,

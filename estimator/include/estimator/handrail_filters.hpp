@@ -10,12 +10,13 @@
 namespace estimator {
 
 // Gap distance test (eq. 1): points whose distance from the wall is that of
-// the bar's visible surface. One pass over ws.valid that also writes every
-// valid point's signed distance to the wall (ws.signed_distance_m) and marks
-// the wall's inliers (kFlagPlane), since all three need the same distance.
-// ws.valid -> ws.gap; returns the number of wall inliers.
+// the bar's visible surface. It is the detector's one pass over every
+// pixel, so it also judges validity (setting the frame's flags afresh,
+// counting the valid pixels into *valid_pixels), writes the signed distance
+// to the wall (ws.signed_distance_m) and marks the wall's inliers
+// (kFlagPlane). cloud -> ws.gap; returns the number of wall inliers.
 std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                const Plane& wall, Workspace& ws);
+                                const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels);
 
 // Cross point test (eqs. 2, 3): both probes to either side of the pixel, in
 // image x or in image y, land on the wall. Probe offsets widen on the side

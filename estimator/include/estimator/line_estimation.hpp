@@ -32,7 +32,7 @@ void project_to_wall(const OrganizedCloud& cloud, const Plane& wall, Workspace& 
 // side set, after project_to_wall), the weaker one kept near perpendicular
 // to the stronger.
 void estimate_handrail_candidates(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                  const Plane& wall, Random& rng, const Workspace& ws,
+                                  const Plane& wall, Random& rng, Workspace& ws,
                                   const IndexList& points, LineModel candidates[2]);
 
 // The points within the inlier distance of the line, into out.

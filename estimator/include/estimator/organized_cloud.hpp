@@ -35,7 +35,13 @@ struct OrganizedCloud {
 // since it runs for every pixel of every frame.)
 inline bool is_valid_point(const CloudPoint& p) {
   const float check = (p.x_m - p.x_m) + (p.y_m - p.y_m) + (p.z_m - p.z_m);
-  return p.confidence != 0 && check == 0.0f && p.z_m > 0.0f;
+  return (p.confidence != 0) & (check == 0.0f) & (p.z_m > 0.0f);
+}
+
+// Valid and within the range the detector works in. Written with & so that
+// the per-pixel passes compile without branches.
+inline bool is_usable_point(const CloudPoint& p, float min_range_m, float max_range_m) {
+  return is_valid_point(p) & (p.z_m >= min_range_m) & (p.z_m <= max_range_m);
 }
 
 }  // namespace estimator

@@ -17,11 +17,19 @@ struct PlaneEstimate {
   std::uint32_t inliers = 0;  // estimated from the refit's subsample
 };
 
+// The wall's input: the usable pixels (valid, within range) of a lattice
+// over the frame, at most Workspace::kMaxRefitSamples, into ws.sample and
+// ws.refit_*. Returns how many. No pass over every pixel is needed before
+// the wall is known; the gap distance test makes the one full pass.
+std::size_t sample_valid_points(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                Workspace& ws);
+
 // Least-squares plane through points (smallest eigenvector of their
 // covariance), oriented so that the camera is on its positive side.
 bool fit_plane_least_squares(const OrganizedCloud& cloud, const std::int32_t* indices,
                              std::size_t count, Plane* plane);
 
+// Needs sample_valid_points() first.
 PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& cfg, Random& rng,
                              Workspace& ws);
 

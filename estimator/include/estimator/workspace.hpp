@@ -24,6 +24,8 @@ class IndexList {
   }
   void clear() { size_ = 0; }
   void resize_down(std::size_t n) { size_ = n < size_ ? n : size_; }
+  // For writers that fill begin()[0..n) directly; clamped to the capacity.
+  void set_size(std::size_t n) { size_ = n < capacity_ ? n : capacity_; }
   std::size_t size() const { return size_; }
   std::size_t capacity() const { return capacity_; }
   bool empty() const { return size_ == 0; }
@@ -49,6 +51,7 @@ enum PixelFlag : std::uint8_t {
   kFlagCrossY = 1u << 4,
   kFlagSide = 1u << 5,
   kFlagLine = 1u << 6,
+  kFlagRunY = 1u << 7,  // side width test: this pixel's column run is measured
 };
 
 struct Workspace {
@@ -58,7 +61,7 @@ struct Workspace {
   std::unique_ptr<float[]> signed_distance_m;  // to the wall; only for kFlagValid pixels
   std::unique_ptr<std::uint8_t[]> flags;       // PixelFlag bits
   std::unique_ptr<float[]> line_t_m;           // position along a line
-  IndexList valid;
+  IndexList sample;  // valid pixels at a fixed stride, for the wall and the pixel scale
   IndexList gap;
   IndexList cross;
   IndexList side;
@@ -68,6 +71,21 @@ struct Workspace {
   std::unique_ptr<float[]> values;    // per-point scratch for medians
   std::unique_ptr<float[]> wall_u_m;  // side points' coordinates in the wall plane
   std::unique_ptr<float[]> wall_v_m;
+  // The side width test measures each raised column run once and notes its
+  // width and peak on every pixel of the run (valid where kFlagRunY is set).
+  std::unique_ptr<float[]> run_width_m;
+  std::unique_ptr<float[]> run_peak_m;
+  // Contiguous copies of the RANSAC subsamples ((x, y, z), or (u, v) in the
+  // wall plane), so that scoring a hypothesis streams through memory
+  // instead of hopping through the cloud.
+  static constexpr std::size_t kMaxScoreSamples = 4096;
+  static constexpr std::size_t kMaxRefitSamples = 3000;
+  std::unique_ptr<float[]> score_x_m;
+  std::unique_ptr<float[]> score_y_m;
+  std::unique_ptr<float[]> score_z_m;
+  std::unique_ptr<float[]> refit_x_m;
+  std::unique_ptr<float[]> refit_y_m;
+  std::unique_ptr<float[]> refit_z_m;
 
   std::size_t bytes() const;
 };
