@@ -60,7 +60,8 @@ const char* validate(const DetectorConfig& c) {
     return "beam_length_max_ratio";
   if (!(c.end_search_m > 0.0f)) return "end_search_m";
   if (!(c.front_height_tolerance_m > 0.0f)) return "front_height_tolerance_m";
-  if (c.max_width == 0 || c.max_height == 0 || c.max_width > 4096 || c.max_height > 4096)
+  if (c.max_width == 0 || c.max_height == 0 || c.max_width > Workspace::kMaxWidth ||
+      c.max_height > 4096)
     return "max_width";
   if (c.budget_us < 0) return "budget_us";
   return nullptr;
@@ -135,8 +136,10 @@ Workspace::Workspace(std::size_t n)
       values(new float[n]),
       wall_u_m(new float[n]),
       wall_v_m(new float[n]),
-      run_width_m(new float[n]),
-      run_peak_m(new float[n]),
+      column_run_first(new std::int32_t[kMaxWidth]),
+      column_run_last(new std::int32_t[kMaxWidth]),
+      column_run_width_m(new float[kMaxWidth]),
+      column_run_peak_m(new float[kMaxWidth]),
       score_x_m(new float[kMaxScoreSamples]),
       score_y_m(new float[kMaxScoreSamples]),
       score_z_m(new float[kMaxScoreSamples]),
@@ -145,9 +148,9 @@ Workspace::Workspace(std::size_t n)
       refit_z_m(new float[kMaxRefitSamples]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 7 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
+  return max_pixels * (sizeof(float) * 5 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
          3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
-         sizeof(std::int32_t) * kMaxRefitSamples;
+         sizeof(std::int32_t) * kMaxRefitSamples + 4 * 4 * kMaxWidth;
 }
 
 }  // namespace estimator

@@ -54,13 +54,13 @@ float clamp_noise(float noise_m) {
 // the bar and judges the first valid pixel, but never comes closer than half
 // the offset: nearer, it could land on the bar itself.
 bool probe_on_wall(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, int drow, int dcol,
-                   int offset_px, float wall_tolerance_m) {
+                   int offset_px) {
   for (int k = offset_px; k >= (offset_px + 1) / 2; --k) {
     const int r = q.row + drow * k, c = q.col + dcol * k;
     if (!inside(cloud, r, c)) continue;
     const std::int32_t i = r * static_cast<int>(cloud.width) + c;
     if (!(ws.flags[i] & kFlagValid)) continue;
-    return std::fabs(ws.signed_distance_m[i]) < wall_tolerance_m;
+    return (ws.flags[i] & kFlagWall) != 0;
   }
   return false;
 }
@@ -126,7 +126,7 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
   float* distance_out = ws.signed_distance_m.get();
   std::uint8_t* flags_out = ws.flags.get();
   std::int32_t* gap_out = ws.gap.begin();
-  const float plane_inlier = cfg.plane_inlier_m;
+  const float plane_inlier = cfg.plane_inlier_m, wall_tolerance = cfg.wall_tolerance_m;
   std::size_t valid_count = 0, gap_count = 0;
   std::uint32_t plane_inliers = 0;
   for (std::size_t k = 0; k < n; ++k) {
@@ -138,11 +138,13 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
     const bool valid = (p.confidence != 0) & (p.z_m >= min_range) & (p.z_m <= max_range) & (s == s);
     distance_out[k] = s;
     const bool on_plane = valid & (std::fabs(s) < plane_inlier);
+    const bool on_wall = valid & (std::fabs(s) < wall_tolerance);
     // A noisy pixel gets a wider window, by twice its own standard deviation.
     const float widen = 2.0f * clamp_noise(p.noise_m);
     const bool in_gap = valid & (s >= lo - widen) & (s <= hi + widen);
-    flags_out[k] = static_cast<std::uint8_t>((valid ? kFlagValid : 0) |
-                                             (on_plane ? kFlagPlane : 0) | (in_gap ? kFlagGap : 0));
+    flags_out[k] =
+        static_cast<std::uint8_t>((valid ? kFlagValid : 0) | (on_plane ? kFlagPlane : 0) |
+                                  (in_gap ? kFlagGap : 0) | (on_wall ? kFlagWall : 0));
     valid_count += valid ? 1u : 0u;
     gap_out[gap_count] = static_cast<std::int32_t>(k);
     gap_count += in_gap ? 1u : 0u;
@@ -180,11 +182,10 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
     const int xm = round_to_int(fx_minus * inv_z);
     const int yp = round_to_int(fy_plus * inv_z);
     const int ym = round_to_int(fy_minus * inv_z);
-    const float tol = cfg.wall_tolerance_m;
     const bool x_ok =
-        probe_on_wall(cloud, ws, q, 0, 1, xp, tol) && probe_on_wall(cloud, ws, q, 0, -1, xm, tol);
+        probe_on_wall(cloud, ws, q, 0, 1, xp) && probe_on_wall(cloud, ws, q, 0, -1, xm);
     const bool y_ok =
-        probe_on_wall(cloud, ws, q, 1, 0, yp, tol) && probe_on_wall(cloud, ws, q, -1, 0, ym, tol);
+        probe_on_wall(cloud, ws, q, 1, 0, yp) && probe_on_wall(cloud, ws, q, -1, 0, ym);
     if (x_ok) ws.flags[i] |= kFlagCrossX;
     if (y_ok) ws.flags[i] |= kFlagCrossY;
     if (x_ok || y_ok) ws.cross.push(i);
@@ -200,9 +201,10 @@ void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
   const float front = h.bar_center_offset_m + 0.5f * h.bar_depth_m;
   const int w = static_cast<int>(cloud.width), rows = static_cast<int>(cloud.height);
   // Cross points come in row-major order, so one remembered row run serves
-  // all its pixels; column runs are noted per pixel (kFlagRunY).
+  // all its pixels; each column remembers its last run the same way.
   RaisedRun row_run;
   int row_run_row = -1;
+  for (int c = 0; c < w; ++c) ws.column_run_last[c] = -1;
   ws.side.clear();
   AscendingPixels pixel_of(cloud);
   for (std::int32_t i : ws.cross) {
@@ -226,17 +228,16 @@ void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
       pass = passes(row_run.width_m, row_run.peak_m);
     }
     if (!pass && (ws.flags[i] & kFlagCrossY)) {
-      if (!(ws.flags[i] & kFlagRunY)) {
+      const int c = q.col;
+      if (q.row < ws.column_run_first[c] || q.row > ws.column_run_last[c]) {
         const RaisedRun run =
-            measure_raised_run(cloud, ws, q.col, w, rows, q.row, raised_min, 1.0f / scale.fy_px);
-        for (int r = run.first; r <= run.last; ++r) {
-          const std::int32_t j = r * w + q.col;
-          ws.flags[j] |= kFlagRunY;
-          ws.run_width_m[j] = run.width_m;
-          ws.run_peak_m[j] = run.peak_m;
-        }
+            measure_raised_run(cloud, ws, c, w, rows, q.row, raised_min, 1.0f / scale.fy_px);
+        ws.column_run_first[c] = run.first;
+        ws.column_run_last[c] = run.last;
+        ws.column_run_width_m[c] = run.width_m;
+        ws.column_run_peak_m[c] = run.peak_m;
       }
-      pass = passes(ws.run_width_m[i], ws.run_peak_m[i]);
+      pass = passes(ws.column_run_width_m[c], ws.column_run_peak_m[c]);
     }
     if (pass) {
       ws.flags[i] |= kFlagSide;

@@ -173,30 +173,58 @@ Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cf
                            const LineModel& line, IndexList& inliers, float* t_m) {
   Cluster best;
   if (inliers.empty()) return best;
+  const float dx = line.direction.x(), dy = line.direction.y(), dz = line.direction.z();
+  const float t0 = line.point.dot(line.direction);
+  float t_lo = INFINITY, t_hi = -INFINITY;
   for (std::int32_t i : inliers) {
     const CloudPoint& p = cloud.points[i];
-    t_m[i] = (Eigen::Vector3f(p.x_m, p.y_m, p.z_m) - line.point).dot(line.direction);
+    const float t = dx * p.x_m + dy * p.y_m + dz * p.z_m - t0;
+    t_m[i] = t;
+    t_lo = t < t_lo ? t : t_lo;
+    t_hi = t > t_hi ? t : t_hi;
   }
-  std::sort(inliers.begin(), inliers.end(),
-            [t_m](std::int32_t a, std::int32_t b) { return t_m[a] < t_m[b]; });
-  std::size_t run_start = 0, best_start = 0, best_count = 0;
-  for (std::size_t k = 1; k <= inliers.size(); ++k) {
-    const bool split =
-        k == inliers.size() || t_m[inliers[k]] - t_m[inliers[k - 1]] > cfg.cluster_gap_m;
-    if (!split) continue;
-    if (k - run_start > best_count) {
-      best_count = k - run_start;
-      best_start = run_start;
+  // No sort: bins no wider than d_r, each keeping its count and its
+  // smallest and largest t. Points sharing a bin are closer than d_r, and
+  // the gap between two occupied bins with nothing between them is exactly
+  // the next bin's smallest t minus this bin's largest, so the runs are
+  // those of a sorted walk. (Past kBins * d_r of line the bins widen.)
+  constexpr int kBins = 512;
+  const float bin_m = std::fmax(cfg.cluster_gap_m, (t_hi - t_lo) / (kBins - 1));
+  std::uint32_t count[kBins] = {};
+  float bin_min[kBins], bin_max[kBins];
+  const int used = std::min(static_cast<int>((t_hi - t_lo) / bin_m) + 1, kBins);
+  for (std::int32_t i : inliers) {
+    const int b = std::min(static_cast<int>((t_m[i] - t_lo) / bin_m), used - 1);
+    if (count[b] == 0) {
+      bin_min[b] = bin_max[b] = t_m[i];
+    } else {
+      bin_min[b] = std::fmin(bin_min[b], t_m[i]);
+      bin_max[b] = std::fmax(bin_max[b], t_m[i]);
     }
-    run_start = k;
+    ++count[b];
   }
-  // Move the winning run to the front and drop the rest.
-  std::copy(inliers.begin() + best_start, inliers.begin() + best_start + best_count,
-            inliers.begin());
-  inliers.resize_down(best_count);
-  best.count = static_cast<std::uint32_t>(best_count);
-  best.t_min_m = t_m[inliers[0]];
-  best.t_max_m = t_m[inliers[best_count - 1]];
+  std::uint32_t run_count = 0, best_count = 0;
+  float run_min = 0.0f, last_max = 0.0f;
+  for (int b = 0; b < used; ++b) {
+    if (count[b] == 0) continue;
+    if (run_count > 0 && bin_min[b] - last_max > cfg.cluster_gap_m) run_count = 0;
+    if (run_count == 0) run_min = bin_min[b];
+    run_count += count[b];
+    last_max = bin_max[b];
+    if (run_count > best_count) {
+      best_count = run_count;
+      best.t_min_m = run_min;
+      best.t_max_m = last_max;
+    }
+  }
+  // Keep the winning run's points, in their order.
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < inliers.size(); ++k) {
+    const float t = t_m[inliers[k]];
+    if (t >= best.t_min_m && t <= best.t_max_m) inliers[kept++] = inliers[k];
+  }
+  inliers.resize_down(kept);
+  best.count = static_cast<std::uint32_t>(kept);
   return best;
 }
 

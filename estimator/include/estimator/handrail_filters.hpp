@@ -14,7 +14,8 @@ namespace estimator {
 // pixel, so it also judges validity (setting the frame's flags afresh,
 // counting the valid pixels into *valid_pixels), writes the signed distance
 // to the wall (ws.signed_distance_m) and marks the wall's inliers
-// (kFlagPlane). cloud -> ws.gap; returns the number of wall inliers.
+// (kFlagPlane) and the pixels the cross test's probes accept as wall
+// (kFlagWall). cloud -> ws.gap; returns the number of wall inliers.
 std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
                                 const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels);
 

@@ -60,8 +60,9 @@ struct Cluster {
   float length_m() const { return t_max_m - t_min_m; }
 };
 
-// Sorts the inliers along the line and keeps the most populated run whose
-// consecutive points are closer than d_r; `inliers` is reduced to that run.
+// Keeps the most populated run of inliers along the line whose consecutive
+// points (in order along it) are closer than d_r; `inliers` is reduced to
+// that run, in its previous order. t_scratch[i] gets each point's position.
 Cluster cluster_along_line(const OrganizedCloud& cloud, const DetectorConfig& cfg,
                            const LineModel& line, IndexList& inliers, float* t_scratch);
 

@@ -51,7 +51,7 @@ enum PixelFlag : std::uint8_t {
   kFlagCrossY = 1u << 4,
   kFlagSide = 1u << 5,
   kFlagLine = 1u << 6,
-  kFlagRunY = 1u << 7,  // side width test: this pixel's column run is measured
+  kFlagWall = 1u << 7,  // valid and within the wall tolerance: what the cross test's probes seek
 };
 
 struct Workspace {
@@ -71,10 +71,13 @@ struct Workspace {
   std::unique_ptr<float[]> values;    // per-point scratch for medians
   std::unique_ptr<float[]> wall_u_m;  // side points' coordinates in the wall plane
   std::unique_ptr<float[]> wall_v_m;
-  // The side width test measures each raised column run once and notes its
-  // width and peak on every pixel of the run (valid where kFlagRunY is set).
-  std::unique_ptr<float[]> run_width_m;
-  std::unique_ptr<float[]> run_peak_m;
+  // The side width test's last raised run in each column (rows
+  // [first, last], its width and peak), so that each run is measured once.
+  static constexpr std::size_t kMaxWidth = 4096;
+  std::unique_ptr<std::int32_t[]> column_run_first;
+  std::unique_ptr<std::int32_t[]> column_run_last;
+  std::unique_ptr<float[]> column_run_width_m;
+  std::unique_ptr<float[]> column_run_peak_m;
   // Contiguous copies of the RANSAC subsamples ((x, y, z), or (u, v) in the
   // wall plane), so that scoring a hypothesis streams through memory
   // instead of hopping through the cloud.
