@@ -92,11 +92,11 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
 
 LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
                                                const LineModel& candidate, const IndexList& points,
-                                               IndexList& inliers, CenterLine* line, bool ends[2],
-                                               float end_t[2]) {
-  LineModel refined = candidate;
-  refine_line(cloud, cfg_, wall_, ws_, points, &refined, inliers);
-  const Cluster cluster = cluster_along_line(cloud, cfg_, refined, inliers, ws_.line_t_m.get());
+                                               LineModel* refined, IndexList& inliers,
+                                               CenterLine* line, bool ends[2], float end_t[2]) {
+  *refined = candidate;
+  refine_line(cloud, cfg_, wall_, ws_, points, refined, inliers);
+  const Cluster cluster = cluster_along_line(cloud, cfg_, *refined, inliers, ws_.line_t_m.get());
   if (cluster.count < cfg_.min_line_inliers) return LineVerdict::kTooFewPoints;
   if (!estimate_center_line(cloud, cfg_, wall_, inliers, ws_, line)) {
     return LineVerdict::kNoCenterLine;
@@ -118,6 +118,23 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   if (extent < cfg_.min_visible_length_m) return LineVerdict::kTooShort;
   if (extent > cfg_.beam_length_max_ratio * length_m) return LineVerdict::kTooLong;
   return LineVerdict::kAccepted;
+}
+
+void HandrailDetector::remove_rejected_line(LineVerdict verdict, const LineModel& refined,
+                                            const CenterLine& line, IndexList& active) {
+  remove_line_points(wall_, ws_, refined, cfg_.line_inlier_m, INFINITY, active);
+  // A line whose front stands lower than the bar's is another structure (a
+  // pipe, a cable): drop the rest of its width too, or its remnants come
+  // back as the next best lines. Only up to its own height: the bar may run
+  // right beside it.
+  const HandrailGeometry& h = cfg_.handrail;
+  const float expected_front = h.bar_center_offset_m + 0.5f * h.bar_depth_m;
+  if (verdict == LineVerdict::kWrongHeight && line.front_height_m < expected_front) {
+    const float half_width_max =
+        0.5f * cfg_.side_width_max_ratio * std::fmax(h.bar_width_m, h.bar_depth_m);
+    remove_line_points(wall_, ws_, refined, half_width_max,
+                       line.front_height_m + cfg_.front_height_tolerance_m, active);
+  }
 }
 
 void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t start_us,
@@ -180,8 +197,9 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
       }
       if (family_done) continue;
       const int k = usable[0] ? 1 : 0;
-      const LineVerdict verdict =
-          verify_candidate(cloud, candidate, active, ws_.line[k], &lines[k], ends[k], end_t[k]);
+      LineModel refined;
+      const LineVerdict verdict = verify_candidate(cloud, candidate, active, &refined, ws_.line[k],
+                                                   &lines[k], ends[k], end_t[k]);
       if (attempt == 0 && out->counts.first_rejection == LineVerdict::kAccepted) {
         out->counts.first_rejection = verdict;
       }
@@ -190,7 +208,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
         chosen_line[k] = candidate;
         if (usable[0] && usable[1]) break;
       } else {
-        remove_line_points(cloud, cfg_, wall_, ws_, candidate, active);
+        remove_rejected_line(verdict, refined, lines[k], active);
         removed = true;
       }
     }

@@ -252,17 +252,22 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     const int max_past_bar = static_cast<int>(
         std::ceil(std::fmax(scale.px_x(cfg.end_search_m, z), scale.px_y(cfg.end_search_m, z))));
     const int max_steps = static_cast<int>(cloud.width + cloud.height);
-    // Each step looks at a short band across the walk (+-2 px), so a walk
-    // direction a few degrees off does not slide off the bar's side and
-    // mistake the wall beside it for the wall past its end.
+    // Each step looks at a short band across the walk (+-2 px), and while
+    // on the bar recentres the walk on the bar's pixels in that band: the
+    // direction from fragmentary inliers may be a few degrees off, and lens
+    // distortion bends the bar's image, so a straight walk would slide off
+    // its side and mistake the wall beside it for the wall past its end.
     const Eigen::Vector2f side(-step.y(), step.x());
     int invalid_run = 0, past_bar = 0;
     float t_bar = t_inner;
+    Eigen::Vector2f centre = start;
     for (int k = 1; k <= max_steps && past_bar <= max_past_bar; ++k) {
+      centre += step;
       bool any_valid = false, on_bar = false, in_front = false, all_wall = true;
+      float across_sum = 0.0f;
+      int across_n = 0;
       for (int j = -2; j <= 2; ++j) {
-        const Eigen::Vector2f px =
-            start + step * static_cast<float>(k) + side * static_cast<float>(j);
+        const Eigen::Vector2f px = centre + side * static_cast<float>(j);
         const int col = static_cast<int>(std::lround(px.x()));
         const int row = static_cast<int>(std::lround(px.y()));
         if (col < 0 || row < 0 || col >= w || row >= static_cast<int>(cloud.height)) {
@@ -281,6 +286,8 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
         if (s > hi + 0.02f) in_front = true;
         if (s >= lo && s <= hi + 0.02f) {
           on_bar = true;
+          across_sum += static_cast<float>(j);
+          ++across_n;
           const float t = (point_of(cloud, i) - line.point).dot(line.axis);
           t_bar = end == 0 ? std::min(t_bar, t) : std::max(t_bar, t);
         }
@@ -294,6 +301,13 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
       if (all_wall && !on_bar) {
         end_seen[end] = true;
         break;
+      }
+      // At most a quarter pixel per step: enough to hold a straight bar whose
+      // direction is off by up to ~14 deg, too little to follow a cable
+      // that bends away from it.
+      if (across_n > 0) {
+        const float shift = across_sum / static_cast<float>(across_n);
+        centre += side * std::fmax(-0.25f, std::fmin(0.25f, shift));
       }
       past_bar = on_bar ? 0 : past_bar + 1;
     }

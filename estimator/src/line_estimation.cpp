@@ -157,14 +157,15 @@ void refine_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
   collect_line_inliers(cloud, cfg, wall, ws, *line, points, inliers);
 }
 
-void remove_line_points(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                        const Workspace& ws, const LineModel& line, IndexList& points) {
-  (void)cloud;
+void remove_line_points(const Plane& wall, const Workspace& ws, const LineModel& line, float band_m,
+                        float max_height_m, IndexList& points) {
   const Line2 l = to_line2(WallBasis(wall), line);
   std::size_t kept = 0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const std::int32_t i = points[k];
-    if (l.distance(ws.wall_u_m[i], ws.wall_v_m[i]) >= cfg.line_inlier_m) points[kept++] = i;
+    const bool drop = l.distance(ws.wall_u_m[i], ws.wall_v_m[i]) < band_m &&
+                      ws.signed_distance_m[i] <= max_height_m;
+    if (!drop) points[kept++] = i;
   }
   points.resize_down(kept);
 }

@@ -52,8 +52,11 @@ class HandrailDetector {
   void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
   // Cluster, front height, centre line, ends and length of one line.
   LineVerdict verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
-                               const IndexList& points, IndexList& inliers, CenterLine* line,
-                               bool ends[2], float end_t[2]);
+                               const IndexList& points, LineModel* refined, IndexList& inliers,
+                               CenterLine* line, bool ends[2], float end_t[2]);
+  // Takes a rejected line's points out of the search.
+  void remove_rejected_line(LineVerdict verdict, const LineModel& refined, const CenterLine& line,
+                            IndexList& active);
   void run_basic(const OrganizedCloud& cloud, HandrailDetection* out);
   void fill_pose(const Eigen::Vector3f& p_cam_center, const Eigen::Matrix3f& R_cam_handrail,
                  HandrailDetection* out) const;

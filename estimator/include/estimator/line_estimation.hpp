@@ -47,11 +47,12 @@ void collect_line_inliers(const OrganizedCloud& cloud, const DetectorConfig& cfg
 void refine_line(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
                  const Workspace& ws, const IndexList& points, LineModel* line, IndexList& inliers);
 
-// Drops the points within the inlier distance of the line, so that the next
-// search finds the next line (used when a line fails verification: a cable
-// with more support than the handrail must not hide it).
-void remove_line_points(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
-                        const Workspace& ws, const LineModel& line, IndexList& points);
+// Drops the points within `band_m` of the line that stand no higher above
+// the wall than `max_height_m`, so that the next search finds the next line
+// (used when a line fails verification: a cable with more support than the
+// handrail must not hide it, nor come back as its own remnants).
+void remove_line_points(const Plane& wall, const Workspace& ws, const LineModel& line, float band_m,
+                        float max_height_m, IndexList& points);
 
 struct Cluster {
   std::uint32_t count = 0;
