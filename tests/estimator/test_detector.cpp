@@ -62,6 +62,28 @@ void test_synthetic_bar_both_ends(void**) {
   assert_near(d.p_cam_target.z(), kWall - kOffset - det.config().target_standoff_m, 1e-4);
 }
 
+void test_lower_pipe_beside_the_bar_does_not_hide_it(void**) {
+  // A pipe 4 cm across, longer than the bar (more line support) and 8 cm
+  // beside it, whose crown stands 1 cm lower than the bar's: it passes the
+  // per-run tests but fails the line's front-height test. The bar must be
+  // found, not the pipe, within two line searches, whatever the random
+  // draws.
+  testing_support::SyntheticScene s = bar_scene(0.001);
+  s.cylinders.push_back(
+      testing_support::vertical_bar(kWall, kOffset + 0.0175 - 0.01 - 0.02, 0.5, 0.02, 0.08));
+  std::vector<CloudPoint> pts;
+  for (std::uint64_t id = 0; id < 10; ++id) {
+    const OrganizedCloud cloud = testing_support::render(s, &pts, id);
+    DetectorConfig cfg = synthetic_config();
+    cfg.line_attempts = 2;
+    HandrailDetector det(cfg);
+    const HandrailDetection d = det.detect(cloud);
+    assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFound));
+    assert_near(d.p_cam_center.x(), 0.0, 0.005);
+    assert_near(d.p_cam_center.z(), kWall - kOffset, 0.005);
+  }
+}
+
 void test_wall_only_reports_no_handrail(void**) {
   std::vector<CloudPoint> pts;
   const OrganizedCloud cloud = testing_support::render(testing_support::SyntheticScene{}, &pts, 7);
@@ -224,6 +246,7 @@ void test_basic_method_runs(void**) {
 int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_synthetic_bar_both_ends),
+      cmocka_unit_test(test_lower_pipe_beside_the_bar_does_not_hide_it),
       cmocka_unit_test(test_wall_only_reports_no_handrail),
       cmocka_unit_test(test_invalid_and_oversized_frames),
       cmocka_unit_test(test_repeatable),
