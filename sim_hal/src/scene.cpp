@@ -164,6 +164,18 @@ bool misses_bound(const Surface& s, const Eigen::Vector3d& o, const Eigen::Vecto
   return (oc - along * d).squaredNorm() > s.bound_radius * s.bound_radius;
 }
 
+// The 8 corners of an oriented box as a surface's hull.
+void set_box_hull(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
+                  const Eigen::Vector3d& half, Surface* s) {
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d corner((k & 1) ? half.x() : -half.x(), (k & 2) ? half.y() : -half.y(),
+                                 (k & 4) ? half.z() : -half.z());
+    s->hull[k] = center + R * corner;
+  }
+  s->hull_points = 8;
+  s->hull_radius = 0.0;
+}
+
 Surface make_cylinder(const Eigen::Vector3d& center, const Eigen::Vector3d& axis, double radius,
                       double half_length, std::int32_t id, double reflectivity) {
   Surface s{};
@@ -173,6 +185,10 @@ Surface make_cylinder(const Eigen::Vector3d& center, const Eigen::Vector3d& axis
   s.cylinder = {center, axis.normalized(), radius, half_length};
   s.bound_center = center;
   s.bound_radius = std::hypot(radius, half_length);
+  s.hull[0] = center - half_length * s.cylinder.axis;
+  s.hull[1] = center + half_length * s.cylinder.axis;
+  s.hull_points = 2;
+  s.hull_radius = radius;
   return s;
 }
 
@@ -185,6 +201,7 @@ Surface make_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
   s.box = {center, R, half};
   s.bound_center = center;
   s.bound_radius = half.norm();
+  set_box_hull(center, R, half, &s);
   return s;
 }
 
@@ -215,6 +232,11 @@ void Scene::add_wall(const Eigen::Vector3d& center, const Eigen::Vector3d& norma
   s.rect = {center, n, v.cross(n), v, 0.5 * width_m, 0.5 * height_m};
   s.bound_center = center;
   s.bound_radius = 0.5 * std::hypot(width_m, height_m);
+  for (int k = 0; k < 4; ++k) {
+    s.hull[k] = center + ((k & 1) ? 0.5 : -0.5) * width_m * s.rect.u +
+                ((k & 2) ? 0.5 : -0.5) * height_m * s.rect.v;
+  }
+  s.hull_points = 4;
   surfaces.push_back(s);
 }
 
@@ -242,6 +264,10 @@ void Scene::add_handrail(const Handrail& h) {
   bar.bound_center = bar_center;
   bar.bound_radius =
       std::sqrt(half * half + 0.25 * (kIssDepth * kIssDepth + kIssWidth * kIssWidth));
+  bar.hull[0] = bar_center - half * a;
+  bar.hull[1] = bar_center + half * a;
+  bar.hull_points = 2;
+  bar.hull_radius = 0.5 * std::hypot(kIssDepth, kIssWidth);
   surfaces.push_back(bar);
   Eigen::Matrix3d R;
   R.col(0) = n;

@@ -14,61 +14,84 @@ double flying_pixel_threshold_m(double range_m) {
 }
 
 namespace {
-constexpr int kTile = 16;
+constexpr int kTile = 8;
 }
 
 DepthRenderer::DepthRenderer(const CameraIntrinsics& cam, const ToFSettings& settings)
     : cam_(cam), settings_(settings), rays_(pixel_rays(cam)) {
-  // Each tile's cone: the mean of its rays, and the widest angle to any.
+  // Each tile's extent in normalised image coordinates.
   const int w = static_cast<int>(cam.width), h = static_cast<int>(cam.height);
   for (int ty = 0; ty < h; ty += kTile) {
     for (int tx = 0; tx < w; tx += kTile) {
-      Eigen::Vector3f axis = Eigen::Vector3f::Zero();
-      for (int y = ty; y < std::min(h, ty + kTile); ++y)
-        for (int x = tx; x < std::min(w, tx + kTile); ++x)
-          axis += rays_[static_cast<std::size_t>(y * w + x)];
-      axis.normalize();
-      float min_cos = 1.0f;
-      for (int y = ty; y < std::min(h, ty + kTile); ++y)
-        for (int x = tx; x < std::min(w, tx + kTile); ++x)
-          min_cos = std::min(min_cos, axis.dot(rays_[static_cast<std::size_t>(y * w + x)]));
-      tile_axis_.push_back(axis);
-      tile_half_angle_.push_back(std::acos(std::clamp(min_cos, -1.0f, 1.0f)));
+      TileBounds b{INFINITY, -INFINITY, INFINITY, -INFINITY};
+      for (int y = ty; y < std::min(h, ty + kTile); ++y) {
+        for (int x = tx; x < std::min(w, tx + kTile); ++x) {
+          const Eigen::Vector3f& r = rays_[static_cast<std::size_t>(y * w + x)];
+          b.x_min = std::min(b.x_min, r.x() / r.z());
+          b.x_max = std::max(b.x_max, r.x() / r.z());
+          b.y_min = std::min(b.y_min, r.y() / r.z());
+          b.y_max = std::max(b.y_max, r.y() / r.z());
+        }
+      }
+      tile_bounds_.push_back(b);
     }
   }
-  tile_begin_.resize(tile_axis_.size() + 1);
+  tile_begin_.resize(tile_bounds_.size() + 1);
   const std::size_t n = rays_.size();
   range_.resize(n);
   measured_.resize(n);
   amplitude_.resize(n);
   cos_incidence_.resize(n);
   bias_.resize(n);
+  row_nearest_.resize(n);
   surface_.resize(n);
   sorted_.reserve(n);
 }
 
 void DepthRenderer::cull_surfaces_per_tile(const Scene& scene,
                                            const Eigen::Isometry3d& T_world_cam) {
-  const Eigen::Vector3d origin = T_world_cam.translation();
-  const Eigen::Matrix3d R = T_world_cam.rotation();
+  const Eigen::Isometry3d T_cam_world = T_world_cam.inverse();
+  // Each surface's extent in normalised image coordinates: the pinhole
+  // image of a convex hull is the hull of its points' images, widened by
+  // the hull's radius at its nearest depth. A hull reaching behind the
+  // image plane could cover any direction: every tile keeps it.
+  surface_bounds_.clear();
+  for (const Surface& s : scene.surfaces) {
+    TileBounds b{INFINITY, -INFINITY, INFINITY, -INFINITY};
+    double z_min = INFINITY;
+    for (int k = 0; k < s.hull_points; ++k) {
+      const Eigen::Vector3d p = T_cam_world * s.hull[k];
+      z_min = std::min(z_min, p.z());
+      if (p.z() <= 0.0) break;
+      b.x_min = std::min(b.x_min, static_cast<float>(p.x() / p.z()));
+      b.x_max = std::max(b.x_max, static_cast<float>(p.x() / p.z()));
+      b.y_min = std::min(b.y_min, static_cast<float>(p.y() / p.z()));
+      b.y_max = std::max(b.y_max, static_cast<float>(p.y() / p.z()));
+    }
+    if (s.hull_points == 0 || z_min <= 1.5 * s.hull_radius + 1e-3) {
+      b = {-INFINITY, INFINITY, -INFINITY, INFINITY};
+    } else {
+      // A sphere of radius r at depth z spans at most r / (z - r) either
+      // side in normalised coordinates (r / z at the axis, more off it).
+      const float margin = static_cast<float>(s.hull_radius / (z_min - s.hull_radius)) * 2.0f;
+      b = {b.x_min - margin, b.x_max + margin, b.y_min - margin, b.y_max + margin};
+    }
+    surface_bounds_.push_back(b);
+  }
   tile_surfaces_.clear();
-  for (std::size_t t = 0; t < tile_axis_.size(); ++t) {
+  for (std::size_t t = 0; t < tile_bounds_.size(); ++t) {
     tile_begin_[t] = tile_surfaces_.size();
-    const Eigen::Vector3d axis = R * tile_axis_[t].cast<double>();
-    const double half = tile_half_angle_[t];
+    const TileBounds& tb = tile_bounds_[t];
     for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
-      const Surface& s = scene.surfaces[k];
-      const Eigen::Vector3d v = s.bound_center - origin;
-      const double dist = v.norm();
-      bool keep = dist <= s.bound_radius;  // the camera is inside the bound
-      if (!keep) {
-        const double angle = std::acos(std::clamp(v.dot(axis) / dist, -1.0, 1.0));
-        keep = angle <= half + std::asin(s.bound_radius / dist) + 1e-3;
+      const TileBounds& sb = surface_bounds_[k];
+      if (sb.x_max < tb.x_min || sb.x_min > tb.x_max || sb.y_max < tb.y_min ||
+          sb.y_min > tb.y_max) {
+        continue;
       }
-      if (keep) tile_surfaces_.push_back(static_cast<std::int32_t>(k));
+      tile_surfaces_.push_back(static_cast<std::int32_t>(k));
     }
   }
-  tile_begin_[tile_axis_.size()] = tile_surfaces_.size();
+  tile_begin_[tile_bounds_.size()] = tile_surfaces_.size();
 }
 
 void DepthRenderer::cast_rays(const Scene& scene, const Eigen::Isometry3d& T_world_cam) {
@@ -137,12 +160,34 @@ void DepthRenderer::add_flying_pixels(std::uint64_t stream_seed) {
 void DepthRenderer::add_multipath() {
   const int w = static_cast<int>(cam_.width), h = static_cast<int>(cam_.height);
   const int win = settings_.multipath_window_px;
+  // Most pixels see nothing nearer in their window (a flat wall): the
+  // window's nearest range, by a separable min filter over the same
+  // stride-2 samples, rules them out before counting.
+  auto nearest_of = [](float a, float b) {
+    if (a <= 0.0f) return b;
+    if (b <= 0.0f) return a;
+    return std::min(a, b);
+  };
+  for (int row = 0; row < h; ++row) {
+    for (int col = 0; col < w; ++col) {
+      float m = 0.0f;
+      for (int cc = std::max(0, col - win); cc <= std::min(w - 1, col + win); cc += 2) {
+        m = nearest_of(m, range_[static_cast<std::size_t>(row * w + cc)]);
+      }
+      row_nearest_[static_cast<std::size_t>(row * w + col)] = m;
+    }
+  }
   for (int row = 0; row < h; ++row) {
     for (int col = 0; col < w; ++col) {
       const std::size_t i = static_cast<std::size_t>(row * w + col);
       bias_[i] = 0.0f;
       const float r = range_[i];
       if (r <= 0.0f) continue;
+      float nearest = 0.0f;
+      for (int rr = std::max(0, row - win); rr <= std::min(h - 1, row + win); rr += 2) {
+        nearest = nearest_of(nearest, row_nearest_[static_cast<std::size_t>(rr * w + col)]);
+      }
+      if (nearest <= 0.0f || r - nearest <= 0.01f) continue;
       int nearer = 0, total = 0;
       for (int rr = std::max(0, row - win); rr <= std::min(h - 1, row + win); rr += 2) {
         for (int cc = std::max(0, col - win); cc <= std::min(w - 1, col + win); cc += 2) {

@@ -53,6 +53,12 @@ struct Surface {
   // Bounding sphere for a quick reject.
   Eigen::Vector3d bound_center = Eigen::Vector3d::Zero();
   double bound_radius = 0.0;
+  // A tighter bound for the renderer's per-tile cull: the convex hull of
+  // spheres of radius hull_radius around the first hull_points points
+  // (a rectangle's corners, a cylinder's cap centres, a box's corners).
+  Eigen::Vector3d hull[8];
+  int hull_points = 0;
+  double hull_radius = 0.0;
 };
 
 // A handrail as placed on a wall: its footprint centre on the wall, the

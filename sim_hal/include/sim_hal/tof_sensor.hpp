@@ -74,8 +74,8 @@ class DepthRenderer {
 
  private:
   void cast_rays(const Scene& scene, const Eigen::Isometry3d& T_world_cam);
-  // Per 16 x 16 pixel tile, the surfaces whose bounding sphere the tile's
-  // cone of rays can reach.
+  // Per 16 x 16 pixel tile, the surfaces whose hull, seen through a pinhole,
+  // overlaps the tile's rays.
   void cull_surfaces_per_tile(const Scene& scene, const Eigen::Isometry3d& T_world_cam);
   void add_flying_pixels(std::uint64_t stream_seed);
   void add_multipath();
@@ -84,14 +84,19 @@ class DepthRenderer {
   CameraIntrinsics cam_;
   ToFSettings settings_;
   std::vector<Eigen::Vector3f> rays_;
-  std::vector<float> range_, measured_, amplitude_, cos_incidence_, bias_;
+  std::vector<float> range_, measured_, amplitude_, cos_incidence_, bias_, row_nearest_;
   std::vector<std::int32_t> surface_;
   std::vector<float> sorted_;
   std::vector<std::uint8_t> drop_;
-  // Tiles: axis and half-angle of each tile's cone (camera frame), and the
-  // surfaces each tile may see (offsets into tile_surfaces_).
-  std::vector<Eigen::Vector3f> tile_axis_;
-  std::vector<float> tile_half_angle_;
+  // Tiles: the range of their rays' normalised image coordinates (x/z, y/z
+  // before distortion, which is what a pinhole projection of the scene
+  // gives), and the surfaces each tile may see (offsets into
+  // tile_surfaces_).
+  struct TileBounds {
+    float x_min, x_max, y_min, y_max;
+  };
+  std::vector<TileBounds> tile_bounds_;
+  std::vector<TileBounds> surface_bounds_;
   std::vector<std::size_t> tile_begin_;
   std::vector<std::int32_t> tile_surfaces_;
 };
