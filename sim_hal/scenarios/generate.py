@@ -34,17 +34,29 @@ TABLE2 = [  # id, y cm, z cm, roll, pitch, yaw (deg)
     (1, 0, 0, 0, 0, 0), (2, 0, 0, 30, 0, 0), (3, 15, 0, 0, 0, 30), (4, 15, 0, 30, 0, 30),
     (5, 0, 15, 0, 0, 30), (6, 0, 15, 30, 0, 30), (7, 15, 15, 0, 30, 30), (8, 15, 15, 30, 30, 30)]
 
+MESH_55CM = "../assets/handrails/handrail_21_5.dae"  # the 21.5 in rail: the paper's 55 cm handrail
+
+def rail(kind, foot, axis):
+    """A 55 cm handrail of the given kind; the mesh kind takes its length
+    from the model."""
+    r = {"kind": kind, "foot": foot, "normal": [1, 0, 0], "axis": axis}
+    if kind == "iss_mesh":
+        r["mesh"] = MESH_55CM
+    else:
+        r["length"] = 0.55
+    return r
+
 def table2(kind):
-    scene = {"walls": [WALL], "handrails": [{"kind": kind, "foot": [0, 0, 0], "normal": [1, 0, 0], "axis": [0, 1, 0], "length": 0.55}]}
+    scene = {"walls": [WALL], "handrails": [rail(kind, [0, 0, 0], [0, 1, 0])]}
     scene.update(clutter_around_horizontal_rail())
     poses = []
     for tid, y, z, roll, pitch, yaw in TABLE2:
         # Turn toward the handrail: the camera sits at +y / +z of it.
         poses.append({"label": "table2-%d" % tid, "position": [0.60, y / 100.0, z / 100.0],
                       "rpy_deg": [roll, pitch, yaw], "frames": 50})
-    return {"name": "table2-" + kind,
+    return {"name": "table2-" + kind.replace("_", "-"),
             "description": "The paper's Table 2: camera 60 cm from the wall facing a horizontal %s handrail among instruments and cables, 8 poses x 50 frames." % kind,
-            "seed": 2 if kind == "round" else 3, "frame_rate_hz": 5, "gripper_angle_deg": 90, "scene": scene, "poses": poses}
+            "seed": {"round": 2, "iss": 3, "iss_mesh": 4}[kind], "frame_rate_hz": 5, "gripper_angle_deg": 90, "scene": scene, "poses": poses}
 
 def sweep():
     rails = [{"kind": "iss", "foot": [0, y, 0], "normal": [1, 0, 0], "axis": [0, 0, 1], "length": L}
@@ -61,10 +73,10 @@ def sweep():
             "poses": [{"label": "sweep", "position": [0.75, -1.3, 0.0], "to": {"position": [0.75, 1.3, 0.0]}, "frames": 80}]}
 
 def approach(kind):
-    scene = {"walls": [WALL], "handrails": [{"kind": kind, "foot": [0, 0, 0], "normal": [1, 0, 0], "axis": [0, 0, 1], "length": 0.55}],
+    scene = {"walls": [WALL], "handrails": [rail(kind, [0, 0, 0], [0, 0, 1])],
              "boxes": [{"center": [0.05, 0.3, 0.1], "size": [0.1, 0.15, 0.2]}],
              "cables": [{"points": [[0.0, -0.15, -0.6], [0.04, -0.15, -0.4], [0.04, -0.16, 0.4], [0.0, -0.16, 0.6]], "diameter": 0.012}]}
-    return {"name": "approach-" + kind,
+    return {"name": "approach-" + kind.replace("_", "-"),
             "description": "A perching approach from 1.2 m to 0.25 m toward a vertical %s handrail, 12 cm above its centre: both ends in view, then one, then none." % kind,
             "seed": 21, "frame_rate_hz": 5, "scene": scene,
             "poses": [{"label": "approach", "position": [1.2, 0.0, 0.12], "to": {"position": [0.25, 0.0, 0.12]}, "frames": 60}]}
@@ -94,7 +106,8 @@ def corner():
             "seed": 51, "frame_rate_hz": 5, "scene": scene,
             "poses": [{"label": "corner", "position": [0.8, -0.1, 0.0], "rpy_deg": [0, 0, -10], "to": {"position": [0.65, 0.0, 0.0], "rpy_deg": [0, 0, -20]}, "frames": 40}]}
 
-for s in (table2("round"), table2("iss"), sweep(), approach("iss"), approach("round"), clutter_only(), two_perpendicular(), corner()):
+for s in (table2("round"), table2("iss"), table2("iss_mesh"), sweep(), approach("iss"), approach("round"),
+          approach("iss_mesh"), clutter_only(), two_perpendicular(), corner()):
     with open(s["name"] + ".json", "w") as f:
         json.dump(s, f, indent=1)
         f.write("\n")

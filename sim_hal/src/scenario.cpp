@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <sstream>
 
 #include "hal/json.hpp"
@@ -19,6 +21,7 @@ class Reader {
  public:
   explicit Reader(std::string path) : path_(std::move(path)) {}
   bool ok() const { return error_.empty(); }
+  const std::string& path() const { return path_; }
   const std::string& error() const { return error_; }
 
   bool fail(const JsonValue& at, const std::string& what) {
@@ -117,7 +120,9 @@ void read_sensor(Reader& r, const JsonValue& s, ToFSettings* t) {
   r.number(s, "range_max_m", 0.1, 20.0, &t->range_max_m, false);
 }
 
-void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
+using MeshCache = std::map<std::string, std::shared_ptr<const TriangleMesh>>;
+
+void read_scene(Reader& r, const JsonValue& sc, Scene* scene, MeshCache* meshes) {
   r.unknown_keys(sc, {"walls", "handrails", "cables", "boxes", "pipes"}, "scene");
   if (const JsonValue* walls = r.member(sc, "walls", JsonValue::Type::kArray, true)) {
     if (walls->items.empty()) r.fail(*walls, "\"walls\" must hold at least one wall");
@@ -153,7 +158,8 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
         r.fail(h, "a handrail must be an object");
         return;
       }
-      r.unknown_keys(h, {"kind", "foot", "normal", "axis", "length", "reflectivity"}, "a handrail");
+      r.unknown_keys(h, {"kind", "foot", "normal", "axis", "length", "mesh", "reflectivity"},
+                     "a handrail");
       Handrail rail{};
       const JsonValue* kind = r.member(h, "kind", JsonValue::Type::kString, true);
       if (!r.ok()) return;
@@ -161,15 +167,60 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene) {
         rail.kind = HandrailKind::kPaperRound;
       } else if (kind->text == "iss") {
         rail.kind = HandrailKind::kIss;
+      } else if (kind->text == "iss_mesh") {
+        rail.kind = HandrailKind::kIssMesh;
       } else {
-        r.fail(*kind, "\"kind\" must be \"round\" or \"iss\", not \"" + kind->text + "\"");
+        r.fail(*kind,
+               "\"kind\" must be \"round\", \"iss\" or \"iss_mesh\", not \"" + kind->text + "\"");
         return;
       }
       rail.reflectivity = 0.5;
       r.vec3(h, "foot", &rail.foot_center, true);
       r.vec3(h, "normal", &rail.normal, true, true);
       r.vec3(h, "axis", &rail.axis, true, true);
-      r.number(h, "length", 0.1, 2.0, &rail.bar_length_m, true);
+      if (rail.kind == HandrailKind::kIssMesh) {
+        if (const JsonValue* length = h.find("length")) {
+          r.fail(*length,
+                 "an \"iss_mesh\" handrail takes its length from the mesh: drop \"length\"");
+          return;
+        }
+        const JsonValue* mesh = r.member(h, "mesh", JsonValue::Type::kString, true);
+        if (!r.ok()) return;
+        // Relative to the scenario file's folder.
+        std::string file = mesh->text;
+        const std::size_t slash = r.path().find_last_of('/');
+        if (!file.empty() && file[0] != '/' && slash != std::string::npos) {
+          file = r.path().substr(0, slash + 1) + file;
+        }
+        auto cached = meshes->find(file);
+        if (cached == meshes->end()) {
+          std::vector<Eigen::Vector3d> vertices;
+          std::vector<Eigen::Vector3i> triangles;
+          std::string error;
+          if (!load_collada_mesh(file, &vertices, &triangles, &error)) {
+            r.fail(*mesh, error);
+            return;
+          }
+          cached = meshes
+                       ->emplace(file, std::make_shared<const TriangleMesh>(std::move(vertices),
+                                                                            std::move(triangles)))
+                       .first;
+        }
+        rail.mesh = cached->second;
+        // Above the legs' tops (the bar's underside is ~4.4 cm off the wall).
+        rail.mesh_bar = measure_bar(*rail.mesh, 0.046);
+        rail.bar_length_m = rail.mesh_bar.length_m();
+        if (!(rail.bar_length_m > 0.05 && rail.mesh_bar.center_offset_m() > 0.02)) {
+          r.fail(*mesh, file + " does not look like an ISS handrail model (no bar found)");
+          return;
+        }
+      } else {
+        if (const JsonValue* mesh = h.find("mesh")) {
+          r.fail(*mesh, "\"mesh\" is for \"iss_mesh\" handrails only");
+          return;
+        }
+        r.number(h, "length", 0.1, 2.0, &rail.bar_length_m, true);
+      }
       r.number(h, "reflectivity", 0.01, 1.0, &rail.reflectivity, false);
       if (!r.ok()) return;
       if (std::fabs(rail.axis.dot(rail.normal)) > 1e-3) {
@@ -337,8 +388,10 @@ bool parse_scenario(const std::string& text, const std::string& path, Scenario* 
   r.number(root, "gripper_angle_deg", 0.0, 90.0, &out->gripper_angle_deg, false);
   if (const JsonValue* s = r.member(root, "sensor", JsonValue::Type::kObject, false))
     read_sensor(r, *s, &out->sensor);
-  if (const JsonValue* sc = r.member(root, "scene", JsonValue::Type::kObject, true))
-    read_scene(r, *sc, &out->scene);
+  if (const JsonValue* sc = r.member(root, "scene", JsonValue::Type::kObject, true)) {
+    MeshCache meshes;
+    read_scene(r, *sc, &out->scene, &meshes);
+  }
   if (r.ok()) read_poses(r, root, out);
   if (!r.ok()) {
     *error = r.error();

@@ -49,8 +49,10 @@ bool hit_cylinder(const CylinderSurface& c, const Eigen::Vector3d& o, const Eige
     if (disc >= 0.0) {
       const double sq = std::sqrt(disc);
       for (double s : {(-b - sq) / (2.0 * a), (-b + sq) / (2.0 * a)}) {
-        if (std::fabs(oa + s * da) <= c.half_length) {
-          keep_nearest(s, (op + s * dp).normalized(), t_min, t, n);
+        // The normal is worked out only for a hit that wins.
+        if (s > t_min && s < *t && std::fabs(oa + s * da) <= c.half_length) {
+          *t = s;
+          *n = (op + s * dp) / c.radius;
         }
       }
     }
@@ -208,14 +210,36 @@ Surface make_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
 }  // namespace
 
 const char* to_string(HandrailKind kind) {
-  return kind == HandrailKind::kPaperRound ? "round" : "iss";
+  switch (kind) {
+    case HandrailKind::kPaperRound:
+      return "round";
+    case HandrailKind::kIss:
+      return "iss";
+    case HandrailKind::kIssMesh:
+      return "iss_mesh";
+  }
+  return "unknown";
 }
 
 double Handrail::center_offset_m() const {
-  return kind == HandrailKind::kPaperRound ? kRoundLegHeight + kRoundRadius : kIssOffset;
+  switch (kind) {
+    case HandrailKind::kPaperRound:
+      return kRoundLegHeight + kRoundRadius;
+    case HandrailKind::kIss:
+      return kIssOffset;
+    case HandrailKind::kIssMesh:
+      return mesh_bar.center_offset_m();
+  }
+  return 0.0;
 }
 
 Eigen::Vector3d Handrail::end_point(int end) const {
+  if (kind == HandrailKind::kIssMesh) {
+    const Eigen::Vector3d n = normal.normalized(), a = axis.normalized();
+    const double across = 0.5 * (mesh_bar.y_min + mesh_bar.y_max);
+    return foot_center + center_offset_m() * n + across * a.cross(n) +
+           (end == 0 ? mesh_bar.z_min : mesh_bar.z_max) * a;
+  }
   const double sign = end == 0 ? -1.0 : 1.0;
   return foot_center + center_offset_m() * normal + sign * 0.5 * bar_length_m * axis;
 }
@@ -246,6 +270,23 @@ void Scene::add_handrail(const Handrail& h) {
   const Eigen::Vector3d n = h.normal.normalized(), a = h.axis.normalized();
   const double half = 0.5 * h.bar_length_m;
   const Eigen::Vector3d bar_center = h.foot_center + h.center_offset_m() * n;
+  if (h.kind == HandrailKind::kIssMesh) {
+    Surface s{};
+    s.kind = SurfaceKind::kMesh;
+    s.object_id = id;
+    s.reflectivity = h.reflectivity;
+    s.mesh.mesh = h.mesh.get();
+    s.mesh.R.col(0) = n;
+    s.mesh.R.col(1) = a.cross(n);
+    s.mesh.R.col(2) = a;
+    s.mesh.t = h.foot_center;
+    const Eigen::Vector3d lo = h.mesh->min_corner(), hi = h.mesh->max_corner();
+    set_box_hull(s.mesh.R * (0.5 * (lo + hi)) + s.mesh.t, s.mesh.R, 0.5 * (hi - lo), &s);
+    s.bound_center = s.mesh.R * (0.5 * (lo + hi)) + s.mesh.t;
+    s.bound_radius = 0.5 * (hi - lo).norm();
+    surfaces.push_back(s);
+    return;
+  }
   if (h.kind == HandrailKind::kPaperRound) {
     surfaces.push_back(make_cylinder(bar_center, a, kRoundRadius, half, id, h.reflectivity));
     for (double sign : {-1.0, 1.0}) {
@@ -307,7 +348,8 @@ bool intersect_surfaces(const Scene& scene, const std::int32_t* surfaces, std::s
   for (std::size_t j = 0; j < count; ++j) {
     const std::int32_t k = surfaces[j];
     const Surface& s = scene.surfaces[static_cast<std::size_t>(k)];
-    if (misses_bound(s, o, d, t)) continue;
+    // A wall's bounding sphere never rejects: its exact test is cheaper.
+    if (s.kind != SurfaceKind::kRect && misses_bound(s, o, d, t)) continue;
     bool got = false;
     switch (s.kind) {
       case SurfaceKind::kRect:
@@ -322,6 +364,18 @@ bool intersect_surfaces(const Scene& scene, const std::int32_t* surfaces, std::s
       case SurfaceKind::kRoundedBar:
         got = hit_rounded_bar(s.bar, o, d, t_min, &t, &n);
         break;
+      case SurfaceKind::kMesh: {
+        // Into the model frame (a rotation keeps t), and the normal back.
+        const Eigen::Vector3d ol = s.mesh.R.transpose() * (o - s.mesh.t);
+        const Eigen::Vector3d dl = s.mesh.R.transpose() * d;
+        MeshHit mh;
+        got = s.mesh.mesh->intersect(ol, dl, t_min, t, &mh);
+        if (got) {
+          t = mh.t;
+          n = s.mesh.R * mh.normal;
+        }
+        break;
+      }
     }
     if (got) which = k;
   }

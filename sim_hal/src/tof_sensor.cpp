@@ -44,6 +44,7 @@ DepthRenderer::DepthRenderer(const CameraIntrinsics& cam, const ToFSettings& set
   cos_incidence_.resize(n);
   bias_.resize(n);
   row_nearest_.resize(n);
+  far_range_.resize(n);
   surface_.resize(n);
   sorted_.reserve(n);
 }
@@ -162,19 +163,19 @@ void DepthRenderer::add_multipath() {
   const int win = settings_.multipath_window_px;
   // Most pixels see nothing nearer in their window (a flat wall): the
   // window's nearest range, by a separable min filter over the same
-  // stride-2 samples, rules them out before counting.
-  auto nearest_of = [](float a, float b) {
-    if (a <= 0.0f) return b;
-    if (b <= 0.0f) return a;
-    return std::min(a, b);
-  };
+  // stride-2 samples, rules them out before counting. No hit reads as
+  // infinitely far, so the filter is a plain minimum.
+  const std::size_t n = range_.size();
+  for (std::size_t i = 0; i < n; ++i) far_range_[i] = range_[i] > 0.0f ? range_[i] : INFINITY;
   for (int row = 0; row < h; ++row) {
+    const float* line = far_range_.data() + static_cast<std::size_t>(row * w);
+    float* out = row_nearest_.data() + static_cast<std::size_t>(row * w);
     for (int col = 0; col < w; ++col) {
-      float m = 0.0f;
+      float m = INFINITY;
       for (int cc = std::max(0, col - win); cc <= std::min(w - 1, col + win); cc += 2) {
-        m = nearest_of(m, range_[static_cast<std::size_t>(row * w + cc)]);
+        m = std::min(m, line[cc]);
       }
-      row_nearest_[static_cast<std::size_t>(row * w + col)] = m;
+      out[col] = m;
     }
   }
   for (int row = 0; row < h; ++row) {
@@ -183,11 +184,11 @@ void DepthRenderer::add_multipath() {
       bias_[i] = 0.0f;
       const float r = range_[i];
       if (r <= 0.0f) continue;
-      float nearest = 0.0f;
+      float nearest = INFINITY;
       for (int rr = std::max(0, row - win); rr <= std::min(h - 1, row + win); rr += 2) {
-        nearest = nearest_of(nearest, row_nearest_[static_cast<std::size_t>(rr * w + col)]);
+        nearest = std::min(nearest, row_nearest_[static_cast<std::size_t>(rr * w + col)]);
       }
-      if (nearest <= 0.0f || r - nearest <= 0.01f) continue;
+      if (!(r - nearest > 0.01f)) continue;
       int nearer = 0, total = 0;
       for (int rr = std::max(0, row - win); rr <= std::min(h - 1, row + win); rr += 2) {
         for (int cc = std::max(0, col - win); cc <= std::min(w - 1, col + win); cc += 2) {

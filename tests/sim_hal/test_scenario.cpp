@@ -39,7 +39,7 @@ void test_errors_name_file_and_line(void**) {
        "  \"handrails\": [\n   {\"kind\": \"square\", \"foot\": [0,0,0], \"normal\": [1,0,0], "
        "\"axis\": [0,0,1], \"length\": 0.5}]},\n"
        " \"poses\": [{\"position\": [1, 0, 0]}]\n}",
-       "s.json:5: \"kind\" must be \"round\" or \"iss\", not \"square\""},
+       "s.json:5: \"kind\" must be \"round\", \"iss\" or \"iss_mesh\", not \"square\""},
       {"{\n \"name\": \"t\",\n \"seed\": 1,\n \"scene\": {\n}", "s.json:5: unterminated object"},
       {"{\"name\": \"t\", \"scene\": {\"walls\": [{\"center\": [0, 0, 0], \"normal\": [1, 0, 0], "
        "\"size\": [2, 2]}]},\n"

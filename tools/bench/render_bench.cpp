@@ -36,6 +36,8 @@ void BM_RenderFrame(benchmark::State& state, const char* scenario_name) {
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_RenderFrame, table2_iss, "table2-iss.json")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderFrame, table2_iss_mesh, "table2-iss-mesh.json")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame, sweep, "sweep.json")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame, clutter_only, "clutter-only.json")->Unit(benchmark::kMillisecond);
 

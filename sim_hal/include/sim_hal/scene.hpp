@@ -3,12 +3,17 @@
 // scenario's choosing. Surfaces are analytic so a ray finds its exact hit.
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "sim_hal/mesh.hpp"
+
 namespace sim_hal {
 
-enum class HandrailKind : std::uint8_t { kPaperRound, kIss };
+// kIss is the analytic rounded-rectangle bar; kIssMesh one of the real
+// handrail meshes.
+enum class HandrailKind : std::uint8_t { kPaperRound, kIss, kIssMesh };
 const char* to_string(HandrailKind kind);
 
 // A bounded plane: centre, unit normal, in-plane unit axes u and v, half
@@ -40,7 +45,14 @@ struct RoundedBarSurface {
   double half_depth = 0.0, half_width = 0.0, corner_radius = 0.0, half_length = 0.0;
 };
 
-enum class SurfaceKind : std::uint8_t { kRect, kCylinder, kBox, kRoundedBar };
+// A triangle mesh placed in the world: world = R * model + t.
+struct MeshSurface {
+  const TriangleMesh* mesh = nullptr;  // owned by the handrail that placed it
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+};
+
+enum class SurfaceKind : std::uint8_t { kRect, kCylinder, kBox, kRoundedBar, kMesh };
 
 struct Surface {
   SurfaceKind kind = SurfaceKind::kRect;
@@ -50,6 +62,7 @@ struct Surface {
   CylinderSurface cylinder{};
   BoxSurface box{};
   RoundedBarSurface bar{};
+  MeshSurface mesh{};
   // Bounding sphere for a quick reject.
   Eigen::Vector3d bound_center = Eigen::Vector3d::Zero();
   double bound_radius = 0.0;
@@ -67,8 +80,12 @@ struct Handrail {
   HandrailKind kind = HandrailKind::kIss;
   Eigen::Vector3d foot_center = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitX();
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
-  double bar_length_m = 0.55;
+  double bar_length_m = 0.55;  // for kIssMesh: measured from the mesh
   double reflectivity = 0.5;
+  // kIssMesh only: the model (frame: x out of the wall, z along the rail,
+  // origin on the wall at the footprint's centre) and its bar as measured.
+  std::shared_ptr<const TriangleMesh> mesh;
+  BarExtent mesh_bar{};
   // Centre-line geometry per kind (the estimator's geometry config agrees).
   double center_offset_m() const;
   Eigen::Vector3d end_point(int end) const;  // centre line, end 0 at -axis

@@ -84,7 +84,7 @@ class DepthRenderer {
   CameraIntrinsics cam_;
   ToFSettings settings_;
   std::vector<Eigen::Vector3f> rays_;
-  std::vector<float> range_, measured_, amplitude_, cos_incidence_, bias_, row_nearest_;
+  std::vector<float> range_, measured_, amplitude_, cos_incidence_, bias_, row_nearest_, far_range_;
   std::vector<std::int32_t> surface_;
   std::vector<float> sorted_;
   std::vector<std::uint8_t> drop_;
