@@ -61,6 +61,20 @@ std::size_t encode_instruction(std::uint8_t id, Instruction instruction, const s
   return n_params + 6;
 }
 
+std::size_t encode_status(std::uint8_t id, std::uint8_t error, const std::uint8_t* params,
+                          std::size_t n_params, std::uint8_t* out) {
+  if (n_params > kMaxParams) return 0;
+  const std::uint8_t length = static_cast<std::uint8_t>(n_params + 2);
+  out[0] = 0xFF;
+  out[1] = 0xFF;
+  out[2] = id;
+  out[3] = length;
+  out[4] = error;
+  for (std::size_t k = 0; k < n_params; ++k) out[5 + k] = params[k];
+  out[5 + n_params] = checksum(id, length, error, params, n_params);
+  return n_params + 6;
+}
+
 ParseEvent StatusParser::push(std::uint8_t byte) {
   switch (state_) {
     case State::kHeader1:

@@ -75,4 +75,30 @@ class StatusParser {
   StatusPacket packet_;
 };
 
+// Writes a status packet (the servo's side: simulated servos use it).
+std::size_t encode_status(std::uint8_t id, std::uint8_t error, const std::uint8_t* params,
+                          std::size_t n_params, std::uint8_t* out);
+
+struct InstructionPacket {
+  std::uint8_t id = 0;
+  std::uint8_t instruction = 0;
+  std::uint8_t n_params = 0;
+  const std::uint8_t* params = nullptr;  // valid until the next push()
+};
+
+// The servo's side of the wire: instruction packets share the status
+// packets' framing, so this is the same resynchronising parser.
+class InstructionParser {
+ public:
+  ParseEvent push(std::uint8_t byte) { return parser_.push(byte); }
+  InstructionPacket packet() const {
+    const StatusPacket& p = parser_.packet();
+    return {p.id, p.error, p.n_params, p.params};
+  }
+  void reset() { parser_.reset(); }
+
+ private:
+  StatusParser parser_;
+};
+
 }  // namespace dynamixel

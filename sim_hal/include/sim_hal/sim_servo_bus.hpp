@@ -1,0 +1,64 @@
+#pragma once
+// Simulated AX-12A servos on one pseudo-terminal, as on a half-duplex
+// Dynamixel bus: a thread reads instruction packets from the pty, lets the
+// addressed servo answer after its return delay, and moves the servos in
+// real time. Faults can be switched on and off while it runs.
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hal/clock.hpp"
+#include "sim_hal/pty.hpp"
+#include "sim_hal/sim_servo.hpp"
+
+namespace sim_hal {
+
+struct BusFaults {
+  double drop_byte_probability = 0.0;  // each reply byte, independently
+  double corrupt_checksum_probability = 0.0;
+  std::uint32_t late_reply_us = 0;  // added to every reply
+  bool no_reply = false;            // the servos stay silent
+  bool echo = false;                // the adapter hears what is sent (half duplex)
+};
+
+class SimServoBus {
+ public:
+  // Servos with these IDs (the perching arm's are 1 and 2).
+  explicit SimServoBus(std::vector<std::uint8_t> ids = {1, 2}, std::uint64_t seed = 1);
+  ~SimServoBus();
+
+  bool start(std::string* error);  // opens the pty and starts the thread
+  void stop();
+  const std::string& path() const { return pty_.slave_path(); }
+
+  void set_faults(const BusFaults& faults);
+  BusFaults faults() const;
+  // Forces servo error bits (overload, overheating) on one servo.
+  void force_error_bits(std::uint8_t id, std::uint8_t bits);
+  // An external torque on a servo's output (N m), e.g. a load on the arm.
+  void set_external_torque(std::uint8_t id, double torque_nm);
+  // A copy of a servo's state, for tests and monitors.
+  bool servo(std::uint8_t id, SimServo* out) const;
+  std::uint64_t packets_handled() const { return packets_.load(); }
+
+ private:
+  void run();
+  void reply(const std::uint8_t* bytes, std::size_t n, std::uint32_t delay_us);
+  SimServo* find(std::uint8_t id);
+
+  PtyDevice pty_;
+  hal::MonotonicClock clock_;
+  std::thread thread_;
+  std::atomic<bool> running_{false};
+  std::atomic<std::uint64_t> packets_{0};
+  mutable std::mutex mutex_;  // guards servos_, torques_, faults_
+  std::vector<SimServo> servos_;
+  std::vector<double> torques_;
+  BusFaults faults_;
+  std::uint64_t rng_state_;
+};
+
+}  // namespace sim_hal
