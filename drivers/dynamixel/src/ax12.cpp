@@ -85,11 +85,13 @@ BusResult Servo::recover_from_alarm() {
   std::uint16_t max_torque = 0;
   BusResult r = bus_.read_u16(id_, kMaxTorque, &max_torque);
   if (r.status != BusStatus::kOk) return r;
-  // The error bits of this reply say whether the cause is still there; an
-  // overload or overheating that persists would trip again at once.
-  if (r.servo_error & (kErrorOverload | kErrorOverheating)) return r;
+  // The alarm bits latch until the torque limit is written again, so only
+  // the reply to that write says whether the cause is gone: if the servo
+  // still reports overload or overheating, it has shut down again.
   r = bus_.write_u16(id_, kTorqueLimit, max_torque ? max_torque : 1023);
-  if (r.status != BusStatus::kOk) return r;
+  if (r.status != BusStatus::kOk || (r.servo_error & (kErrorOverload | kErrorOverheating))) {
+    return r;
+  }
   return bus_.write_u8(id_, kTorqueEnable, 1);
 }
 

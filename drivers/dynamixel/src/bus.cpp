@@ -93,6 +93,19 @@ BusResult Bus::wait_reply(std::uint8_t id, std::size_t expect_params, std::int64
   return result;
 }
 
+void Bus::drain_until(std::int64_t deadline_us) {
+  std::uint8_t sink[kMaxPacket];
+  for (int pass = 0; pass < 64; ++pass) {
+    const std::int64_t left = deadline_us - clock_.now_us();
+    if (left <= 0) return;
+    std::size_t n = 0;
+    if (port_.read(sink, sizeof(sink), sizeof(sink), &n, left) != hal::SerialStatus::kOk &&
+        n == 0) {
+      return;
+    }
+  }
+}
+
 BusResult Bus::transact(std::uint8_t id, Instruction instruction, const std::uint8_t* params,
                         std::size_t n_params, bool expect_reply, std::size_t expect_params,
                         StatusPacket* reply) {
@@ -114,6 +127,13 @@ BusResult Bus::transact(std::uint8_t id, Instruction instruction, const std::uin
     if (ws != hal::SerialStatus::kOk) {
       result.status = BusStatus::kSerialError;
       result.serial_status = ws;
+      // A stale byte (a late reply to an earlier packet) read back as the
+      // echo: let this attempt's own reply come and go, then try again.
+      // Anything else is the port's failure.
+      if (ws == hal::SerialStatus::kEchoMismatch) {
+        drain_until(start + reply_timeout_us(n, reply_bytes));
+        continue;
+      }
       return result;
     }
     if (!expect_reply) return result;

@@ -85,8 +85,9 @@ class Servo {
   BusResult set_torque_limit(double fraction);
   BusResult set_torque_enable(bool on);
   // After an alarm shutdown (overload or overheating drops the torque limit
-  // to 0): once the cause is gone, restores the torque limit from Max
-  // Torque (14) and turns torque back on.
+  // to 0): restores the torque limit from Max Torque (14) and turns torque
+  // back on. While the cause persists the servo refuses, and the result
+  // carries its error bits.
   BusResult recover_from_alarm();
 
  private:

@@ -85,6 +85,8 @@ class Bus {
   BusResult wait_reply(std::uint8_t id, std::size_t expect_params, std::int64_t deadline_us,
                        StatusPacket* reply);
   bool replies_to(Instruction instruction, std::uint8_t id) const;
+  // Reads and discards until the deadline.
+  void drain_until(std::int64_t deadline_us);
 
   hal::SerialPort& port_;
   const hal::Clock& clock_;
