@@ -3,7 +3,9 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include "dynamixel/protocol1.hpp"
 
@@ -69,8 +71,27 @@ bool SimServoBus::servo(std::uint8_t id, SimServo* out) const {
   return false;
 }
 
-void SimServoBus::reply(const std::uint8_t* bytes, std::size_t n, std::uint32_t delay_us) {
-  if (delay_us > 0) std::this_thread::sleep_for(std::chrono::microseconds(delay_us));
+void SimServoBus::queue_reply(const std::uint8_t* bytes, std::size_t n, std::int64_t due_us) {
+  if (n_pending_ == kMaxPending || n > dynamixel::kMaxPacket) return;  // a full bus drops it
+  PendingReply& p = pending_[n_pending_++];
+  p.due_us = due_us;
+  p.n = n;
+  std::memcpy(p.bytes, bytes, n);
+}
+
+void SimServoBus::send_due_replies(std::int64_t now_us) {
+  // In due order: the earliest first.
+  for (std::size_t pass = 0; pass < kMaxPending && n_pending_ > 0; ++pass) {
+    std::size_t first = 0;
+    for (std::size_t k = 1; k < n_pending_; ++k)
+      if (pending_[k].due_us < pending_[first].due_us) first = k;
+    if (pending_[first].due_us > now_us) return;
+    send(pending_[first].bytes, pending_[first].n);
+    pending_[first] = pending_[--n_pending_];
+  }
+}
+
+void SimServoBus::send(const std::uint8_t* bytes, std::size_t n) {
   std::size_t sent = 0;
   for (int tries = 0; sent < n && tries < 100; ++tries) {
     const ssize_t w = ::write(pty_.master_fd(), bytes + sent, n - sent);
@@ -83,9 +104,17 @@ void SimServoBus::run() {
   std::uint8_t rx[256];
   std::int64_t last_us = clock_.now_us();
   while (running_) {
+    // Wake for input, for the next reply due, or every millisecond for the
+    // motion model.
+    std::int64_t wait_us = 1000;
+    for (std::size_t k = 0; k < n_pending_; ++k) {
+      wait_us = std::min(wait_us, std::max<std::int64_t>(0, pending_[k].due_us - clock_.now_us()));
+    }
     struct pollfd p = {pty_.master_fd(), POLLIN, 0};
-    poll(&p, 1, 1);  // 1 ms: also the motion model's tick
+    struct timespec ts = {0, static_cast<long>(wait_us * 1000)};
+    ppoll(&p, 1, &ts, nullptr);
     const std::int64_t now = clock_.now_us();
+    send_due_replies(now);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       for (std::size_t k = 0; k < servos_.size(); ++k) {
@@ -97,7 +126,7 @@ void SimServoBus::run() {
     const ssize_t n = ::read(pty_.master_fd(), rx, sizeof(rx));
     if (n <= 0) continue;
     BusFaults faults = this->faults();
-    if (faults.echo) reply(rx, static_cast<std::size_t>(n), 0);
+    if (faults.echo) send(rx, static_cast<std::size_t>(n));
     for (ssize_t k = 0; k < n; ++k) {
       if (parser.push(rx[k]) != dynamixel::ParseEvent::kPacket) continue;
       ++packets_;
@@ -130,7 +159,7 @@ void SimServoBus::run() {
       for (std::size_t b = 0; b < out_n; ++b) {
         if (uniform() >= faults.drop_byte_probability) kept[kept_n++] = out[b];
       }
-      reply(kept, kept_n, delay_us + faults.late_reply_us);
+      queue_reply(kept, kept_n, clock_.now_us() + delay_us + faults.late_reply_us);
     }
   }
 }

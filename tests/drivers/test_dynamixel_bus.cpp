@@ -169,9 +169,11 @@ void test_injected_faults(void**) {
   rig.sim.set_faults(f);
   assert_int_equal(static_cast<int>(rig.bus.ping(1).status), static_cast<int>(BusStatus::kTimeout));
   f = {};
-  f.late_reply_us = 120000;
+  f.late_reply_us = 300000;
   rig.sim.set_faults(f);
   assert_int_equal(static_cast<int>(rig.bus.ping(1).status), static_cast<int>(BusStatus::kTimeout));
+  // Let the late replies land before going on.
+  std::this_thread::sleep_for(std::chrono::milliseconds(350));
   // Echo: without suppression the echoed READ parses as a status packet
   // (the maker's SDK pitfall); with it, the reply is the servo's.
   f = {};

@@ -46,7 +46,19 @@ class SimServoBus {
 
  private:
   void run();
-  void reply(const std::uint8_t* bytes, std::size_t n, std::uint32_t delay_us);
+  void send(const std::uint8_t* bytes, std::size_t n);
+  // Replies wait in a small queue until their time (return delay, injected
+  // lateness), so a late reply does not hold up the bus thread.
+  void queue_reply(const std::uint8_t* bytes, std::size_t n, std::int64_t due_us);
+  void send_due_replies(std::int64_t now_us);
+  struct PendingReply {
+    std::int64_t due_us = 0;
+    std::size_t n = 0;
+    std::uint8_t bytes[dynamixel::kMaxPacket] = {};
+  };
+  static constexpr std::size_t kMaxPending = 16;
+  PendingReply pending_[kMaxPending];
+  std::size_t n_pending_ = 0;
   SimServo* find(std::uint8_t id);
 
   PtyDevice pty_;
