@@ -1,0 +1,143 @@
+#include "sim_hal/sim_gripper.hpp"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sim_hal {
+
+SimGripperBoard::SimGripperBoard(const GripperModel& model) : model_(model) {}
+
+SimGripperBoard::~SimGripperBoard() {
+  stop();
+}
+
+bool SimGripperBoard::start(std::string* error) {
+  if (!pty_.open(error)) return false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    gfw_init(&fw_, static_cast<std::uint32_t>(clock_.now_us() / 1000));
+  }
+  running_ = true;
+  thread_ = std::thread([this] { run(); });
+  return true;
+}
+
+void SimGripperBoard::stop() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+  pty_.close();
+}
+
+void SimGripperBoard::set_handrail_raw(int raw) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  handrail_raw_ = raw;
+}
+
+void SimGripperBoard::set_faults(const BusFaults& faults) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  faults_ = faults;
+}
+
+GripperSnapshot SimGripperBoard::snapshot() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  GripperSnapshot s;
+  s.position_raw = position_;
+  s.velocity_counts_s = velocity_;
+  s.current_a = current_a_;
+  s.pwm = fw_.pwm;
+  s.calibrated = fw_.calibrated != 0;
+  s.safe_start = fw_.safe_start != 0;
+  return s;
+}
+
+void SimGripperBoard::send(const std::uint8_t* bytes, std::size_t n) {
+  std::size_t sent = 0;
+  for (int tries = 0; sent < n && tries < 100; ++tries) {
+    const ssize_t w = ::write(pty_.master_fd(), bytes + sent, n - sent);
+    if (w > 0) sent += static_cast<std::size_t>(w);
+  }
+}
+
+// A DC gearmotor: the speed follows the applied voltage with a first-order
+// lag; the current is what the voltage left after back-EMF drives through
+// the winding. A stop (hard stop or handrail) holds the speed at zero.
+void SimGripperBoard::step_motor(double dt_s, int pwm) {
+  const double volts = model_.supply_v * pwm / 255.0;
+  const double ke = model_.supply_v / model_.free_speed_counts_s;
+  const double target = volts / ke;
+  velocity_ += (target - velocity_) * std::min(1.0, dt_s / model_.time_constant_s);
+  double next = position_ + velocity_ * dt_s;
+  double upper = model_.closed_stop_raw;
+  if (handrail_raw_ >= 0) upper = std::min<double>(upper, handrail_raw_);
+  if (next >= upper) {
+    next = upper;
+    velocity_ = std::min(velocity_, 0.0);
+  }
+  if (next <= model_.open_stop_raw) {
+    next = model_.open_stop_raw;
+    velocity_ = std::max(velocity_, 0.0);
+  }
+  position_ = next;
+  current_a_ = std::fabs(volts - ke * velocity_) / model_.winding_ohm;
+}
+
+void SimGripperBoard::run() {
+  std::uint8_t rx[64];
+  std::int64_t last_us = clock_.now_us();
+  while (running_) {
+    struct pollfd p = {pty_.master_fd(), POLLIN, 0};
+    poll(&p, 1, 1);
+    const std::int64_t now_us = clock_.now_us();
+    const std::uint32_t now_ms = static_cast<std::uint32_t>(now_us / 1000);
+    BusFaults faults;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      faults = faults_;
+      // The firmware's 1 kHz tick, caught up in whole milliseconds.
+      const std::int64_t steps = std::min<std::int64_t>((now_us - last_us) / 1000, 50);
+      for (std::int64_t k = 0; k < steps; ++k) {
+        step_motor(1e-3, fw_.pwm);
+        const std::uint16_t ma = static_cast<std::uint16_t>(std::lround(current_a_ * 1000.0));
+        gfw_tick(&fw_, static_cast<std::int32_t>(std::lround(position_)), ma,
+                 now_ms - static_cast<std::uint32_t>(steps - 1 - k));
+      }
+      if (steps > 0) last_us += steps * 1000;
+      if (now_us - last_us > 50000) last_us = now_us;  // after a long stall
+    }
+    if (!(p.revents & POLLIN)) continue;
+    const ssize_t n = ::read(pty_.master_fd(), rx, sizeof(rx));
+    if (n <= 0) continue;
+    if (faults.echo) send(rx, static_cast<std::size_t>(n));
+    for (ssize_t k = 0; k < n; ++k) {
+      std::uint8_t out[GFW_MAX_REPLY];
+      std::size_t out_n = 0;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        fw_.tx_len = 0;
+        gfw_receive(&fw_, rx[k], 0, now_ms);
+        out_n = fw_.tx_len;
+        std::copy(fw_.tx, fw_.tx + out_n, out);
+        fw_.tx_len = 0;
+      }
+      if (out_n == 0 || faults.no_reply) continue;
+      auto uniform = [this] {
+        std::uint64_t z = (rng_state_ += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+      };
+      if (uniform() < faults.corrupt_checksum_probability) out[out_n - 1] ^= 0x15;
+      std::uint8_t kept[GFW_MAX_REPLY];
+      std::size_t kept_n = 0;
+      for (std::size_t b = 0; b < out_n; ++b) {
+        if (uniform() >= faults.drop_byte_probability) kept[kept_n++] = out[b];
+      }
+      send(kept, kept_n);
+    }
+  }
+}
+
+}  // namespace sim_hal
