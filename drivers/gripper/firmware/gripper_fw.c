@@ -200,12 +200,15 @@ static int16_t clamp_pwm(int32_t v) {
 }
 
 void gfw_tick(gfw_state* s, int32_t raw_encoder, uint16_t current_ma, uint32_t now_ms) {
-  const uint32_t dt_ms = now_ms - s->last_tick_ms;
-  s->last_tick_ms = now_ms;
-  if (dt_ms > 0) {
-    s->velocity = (int16_t)((raw_encoder - s->last_raw) * 1000 / (int32_t)dt_ms);
+  /* Velocity over 20 ms windows: per tick, one encoder count is already
+   * 1000 counts/s, too coarse to tell slow from still. */
+  const uint32_t window_ms = now_ms - s->window_start_ms;
+  if (window_ms >= 20) {
+    s->velocity = (int16_t)((raw_encoder - s->window_raw) * 1000 / (int32_t)window_ms);
+    s->window_raw = raw_encoder;
+    s->window_start_ms = now_ms;
   }
-  s->last_raw = raw_encoder;
+  s->last_tick_ms = now_ms;
   s->position = (int16_t)(raw_encoder - s->encoder_offset);
   s->current_ma = current_ma;
 

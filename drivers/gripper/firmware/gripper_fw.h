@@ -81,7 +81,8 @@ typedef struct {
   uint16_t current_ma;
   uint16_t timeout_ms;
   uint32_t last_command_ms, stall_since_ms, limit_since_ms, last_tick_ms;
-  int32_t last_raw;
+  int32_t window_raw; /* encoder at the start of the velocity window */
+  uint32_t window_start_ms;
   int16_t pwm; /* -255..255 to the motor driver; positive closes */
 } gfw_state;
 
