@@ -15,6 +15,9 @@
 #include <cstring>
 
 namespace hal {
+namespace detail {
+bool set_raw_standard_rate(int fd, std::uint32_t baud);  // linux_serial_termios.cpp
+}  // namespace detail
 
 const char* to_string(SerialStatus status) {
   switch (status) {
@@ -80,7 +83,14 @@ SerialStatus LinuxSerialPort::set_baud(std::uint32_t baud) {
   if (fd_ < 0) return SerialStatus::kNotOpen;
   if (baud == 0) return SerialStatus::kInvalidArgument;
   struct termios2 tio;
-  if (ioctl(fd_, TCGETS2, &tio) != 0) return SerialStatus::kConfigFailed;
+  if (ioctl(fd_, TCGETS2, &tio) != 0) {
+    // No termios2 here: the standard rates through glibc's termios.
+    any_baud_ = false;
+    if (!detail::set_raw_standard_rate(fd_, baud)) return SerialStatus::kConfigFailed;
+    baud_ = baud;
+    return SerialStatus::kOk;
+  }
+  any_baud_ = true;
   // Raw: no line editing, no echo, no signals, no CR/NL translation, no
   // software flow control; 8 data bits, no parity, one stop bit.
   tio.c_iflag = 0;

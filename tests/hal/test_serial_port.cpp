@@ -37,8 +37,15 @@ void test_bytes_both_ways_at_any_rate(void**) {
     Pty pty;
     hal::LinuxSerialPort port;
     std::string error;
-    assert_int_equal(static_cast<int>(port.open(pty.slave, baud, &error)),
-                     static_cast<int>(hal::SerialStatus::kOk));
+    const hal::SerialStatus opened = port.open(pty.slave, baud, &error);
+    if (opened == hal::SerialStatus::kConfigFailed && !port.any_baud_supported() &&
+        (baud == 250000u || baud == 123456u)) {
+      // qemu-user passes no termios2: non-standard rates are the real
+      // kernel's business, checked on the host run of this test.
+      print_message("%u baud skipped: no termios2 here (%s)\n", baud, error.c_str());
+      continue;
+    }
+    assert_int_equal(static_cast<int>(opened), static_cast<int>(hal::SerialStatus::kOk));
     assert_int_equal(port.baud(), baud);
     // Every byte value, including the ones a cooked tty would eat or
     // translate (CR, NL, ^C, ^D, XON/XOFF).

@@ -32,6 +32,9 @@ class LinuxSerialPort final : public SerialPort {
   SerialStatus set_baud(std::uint32_t baud) override;
   std::uint32_t baud() const override { return baud_; }
   void set_echo_suppression(bool on) override { echo_suppression_ = on; }
+  // False where the kernel interface for arbitrary rates (termios2) is
+  // missing, as under qemu-user: then only the standard rates open.
+  bool any_baud_supported() const { return any_baud_; }
 
  private:
   // Waits until the descriptor is readable (or writable): kOk, kTimeout at
@@ -43,6 +46,7 @@ class LinuxSerialPort final : public SerialPort {
   int fd_ = -1;
   std::uint32_t baud_ = 0;
   bool echo_suppression_ = false;
+  bool any_baud_ = true;
   std::string path_;
 };
 
