@@ -91,6 +91,14 @@ void SimGripperBoard::run() {
     struct pollfd p = {pty_.master_fd(), POLLIN, 0};
     poll(&p, 1, 1);
     const std::int64_t now_us = clock_.now_us();
+    for (std::size_t k = 0; k < n_late_;) {
+      if (late_[k].due_us <= now_us) {
+        send(late_[k].bytes, late_[k].n);
+        late_[k] = late_[--n_late_];
+      } else {
+        ++k;
+      }
+    }
     const std::uint32_t now_ms = static_cast<std::uint32_t>(now_us / 1000);
     BusFaults faults;
     {
@@ -134,6 +142,15 @@ void SimGripperBoard::run() {
       std::size_t kept_n = 0;
       for (std::size_t b = 0; b < out_n; ++b) {
         if (uniform() >= faults.drop_byte_probability) kept[kept_n++] = out[b];
+      }
+      if (faults.late_reply_us > 0) {
+        if (n_late_ < kMaxLate) {
+          LateReply& r = late_[n_late_++];
+          r.due_us = now_us + faults.late_reply_us;
+          r.n = kept_n;
+          std::copy(kept, kept + kept_n, r.bytes);
+        }
+        continue;
       }
       send(kept, kept_n);
     }

@@ -165,6 +165,23 @@ void test_faults_on_the_line(void**) {
   for (int k = 0; k < 20; ++k) ok += rig.driver.get_version(&v) == gripper::Status::kOk;
   assert_true(ok >= 16);
   assert_true(rig.driver.retries_used() > 0);
+  // Replies later than the driver waits: a timeout; the late bytes that
+  // land afterwards are flushed before the next command.
+  f = {};
+  f.late_reply_us = 200000;
+  rig.board.set_faults(f);
+  assert_int_equal(static_cast<int>(rig.driver.get_version(&v)),
+                   static_cast<int>(gripper::Status::kTimeout));
+  std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  // A half-duplex line that echoes: the echoed command byte starts a packet
+  // the reply parser ignores until the board's own reply.
+  f = {};
+  f.echo = true;
+  rig.board.set_faults(f);
+  assert_int_equal(static_cast<int>(rig.driver.get_version(&v)),
+                   static_cast<int>(gripper::Status::kOk));
+  assert_int_equal(v.board_id, 0x42);
+  rig.board.set_faults({});
   assert_string_equal(gripper::error_bit_name(gripper::kErrorNotCalibrated), "NOT_CALIBRATED");
   assert_int_equal(static_cast<int>(rig.driver.close(0.5, 0)),
                    static_cast<int>(gripper::Status::kInvalidArgument));

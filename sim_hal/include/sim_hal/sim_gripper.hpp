@@ -49,6 +49,15 @@ class SimGripperBoard {
  private:
   void run();
   void send(const std::uint8_t* bytes, std::size_t n);
+  // Replies held back by the late-reply fault, sent when due.
+  struct LateReply {
+    std::int64_t due_us = 0;
+    std::size_t n = 0;
+    std::uint8_t bytes[GFW_MAX_REPLY] = {};
+  };
+  static constexpr std::size_t kMaxLate = 8;
+  LateReply late_[kMaxLate];
+  std::size_t n_late_ = 0;
   void step_motor(double dt_s, int pwm);
 
   GripperModel model_;
