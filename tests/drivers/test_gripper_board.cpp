@@ -66,6 +66,9 @@ bool wait_for(Rig& rig, int timeout_ms, gripper::State* st, Done done) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     if (rig.driver.get_state(st) == gripper::Status::kOk && done(*st)) return true;
   }
+  print_error(
+      "gave up waiting: position %d, velocity %d, current %d mA, flags 0x%02x, error 0x%02x\n",
+      st->position_counts, st->velocity_counts_s, st->current_ma, st->flags, st->error);
   return false;
 }
 
@@ -93,14 +96,14 @@ void test_safe_start_calibrate_and_grasp(void**) {
   assert_true(err & gripper::kErrorNotCalibrated);
   // Calibrate: to the open stop, encoder zeroed there.
   assert_true(rig.driver.calibrate() == gripper::Status::kOk);
-  assert_true(wait_for(rig, 3000, &st,
+  assert_true(wait_for(rig, 8000, &st,
                        [](const gripper::State& s) { return s.has(gripper::kFlagCalibrated); }));
   assert_true(std::abs(st.position_counts) <= 5);
   // Close on a handrail 1800 counts from the open stop: holds there, at
   // the current limit.
   rig.board.set_handrail_raw(-500 + 1800);
   assert_true(rig.driver.close(0.6, 800) == gripper::Status::kOk);
-  assert_true(wait_for(rig, 3000, &st,
+  assert_true(wait_for(rig, 8000, &st,
                        [](const gripper::State& s) { return s.has(gripper::kFlagHolding); }));
   assert_true(std::abs(st.position_counts - 1800) <= 10);
   // The hold trims the drive down to the limit within a few tens of ms.
@@ -112,17 +115,20 @@ void test_safe_start_calibrate_and_grasp(void**) {
   // position tells apart from a handrail.
   rig.board.set_handrail_raw(-1);
   assert_true(rig.driver.open(1.0) == gripper::Status::kOk);
-  assert_true(wait_for(rig, 3000, &st, [](const gripper::State& s) {
+  assert_true(wait_for(rig, 8000, &st, [](const gripper::State& s) {
     return s.position_counts < 50 && !s.has(gripper::kFlagMoving);
   }));
+  // Reversing while still closing (the handrail just taken away) must not
+  // trip the over-current limit: the firmware ramps the drive.
+  assert_false(st.error & gripper::kErrorOverCurrent);
   assert_true(rig.driver.close(0.6, 800) == gripper::Status::kOk);
-  assert_true(wait_for(rig, 3000, &st, [](const gripper::State& s) {
+  assert_true(wait_for(rig, 8000, &st, [](const gripper::State& s) {
     return s.has(gripper::kFlagHolding) || s.has(gripper::kFlagStalled);
   }));
   assert_true(st.position_counts > 2900);
   // GO_TO a position.
   assert_true(rig.driver.go_to(1000, 0.8) == gripper::Status::kOk);
-  assert_true(wait_for(rig, 3000, &st, [](const gripper::State& s) {
+  assert_true(wait_for(rig, 8000, &st, [](const gripper::State& s) {
     return std::abs(s.position_counts - 1000) <= 10 && !s.has(gripper::kFlagMoving);
   }));
 }

@@ -227,6 +227,7 @@ void gfw_tick(gfw_state* s, int32_t raw_encoder, uint16_t current_ma, uint32_t n
   if (s->safe_start && s->mode != GFW_MODE_IDLE) s->mode = GFW_MODE_IDLE;
 
   const int32_t drive = (int32_t)s->speed * 2; /* 0..254 */
+  const int16_t previous_pwm = s->pwm;
   const uint8_t still = s->velocity < 20 && s->velocity > -20;
   switch (s->mode) {
     case GFW_MODE_IDLE:
@@ -284,5 +285,13 @@ void gfw_tick(gfw_state* s, int32_t raw_encoder, uint16_t current_ma, uint32_t n
       if (err < 5 && err > -5) s->mode = GFW_MODE_IDLE;
       break;
     }
+  }
+  /* Slew limit: reversing a moving motor at once would drive the supply
+   * plus the back-EMF through the winding (plugging), a current spike that
+   * trips the over-current limit. Braking (0) is immediate. */
+  if (s->pwm != 0) {
+    const int32_t step = (int32_t)s->pwm - previous_pwm;
+    if (step > GFW_PWM_SLEW_PER_MS) s->pwm = (int16_t)(previous_pwm + GFW_PWM_SLEW_PER_MS);
+    if (step < -GFW_PWM_SLEW_PER_MS) s->pwm = (int16_t)(previous_pwm - GFW_PWM_SLEW_PER_MS);
   }
 }

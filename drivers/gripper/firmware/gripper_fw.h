@@ -52,6 +52,7 @@ enum {
 #define GFW_MAX_REPLY 12
 #define GFW_ABS_CURRENT_LIMIT_MA 2500
 #define GFW_DEFAULT_TIMEOUT_MS 500
+#define GFW_PWM_SLEW_PER_MS 4 /* full reversal in about 130 ms */
 
 uint8_t gfw_crc7(const uint8_t* bytes, uint8_t n);
 
