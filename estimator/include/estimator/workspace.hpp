@@ -82,7 +82,7 @@ struct Workspace {
   // wall plane), so that scoring a hypothesis streams through memory
   // instead of hopping through the cloud.
   static constexpr std::size_t kMaxScoreSamples = 4096;
-  static constexpr std::size_t kMaxRefitSamples = 3000;
+  static constexpr std::size_t kMaxRefitSamples = 2000;
   std::unique_ptr<float[]> score_x_m;
   std::unique_ptr<float[]> score_y_m;
   std::unique_ptr<float[]> score_z_m;
