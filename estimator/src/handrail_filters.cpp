@@ -105,6 +105,68 @@ RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, s
   return run;
 }
 
+// The raised runs through pixels taken in ascending order: the row's run
+// is remembered until the walk leaves it, and each column remembers its
+// last run, so every run is measured once per pass.
+class RunCache {
+ public:
+  RunCache(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
+           Workspace& ws)
+      : cloud_(cloud),
+        ws_(ws),
+        w_(static_cast<int>(cloud.width)),
+        rows_(static_cast<int>(cloud.height)),
+        raised_min_(gap_min_m(cfg)),
+        inv_fx_(1.0f / scale.fx_px),
+        inv_fy_(1.0f / scale.fy_px) {
+    for (int c = 0; c < w_; ++c) ws_.column_run_last[c] = -1;
+  }
+  // A pixel below the raised height (let into the gap set by its noise)
+  // joins the raised runs either side of it: such a run is its own and is
+  // not remembered, so that no other pixel's verdict depends on the order
+  // of the walk.
+  const RaisedRun& row(Pixel q) {
+    if (!is_raised(ws_, q.row * w_ + q.col, raised_min_)) {
+      own_run_ = measure_raised_run(cloud_, ws_, q.row * w_, 1, w_, q.col, raised_min_, inv_fx_);
+      return own_run_;
+    }
+    if (q.row != row_run_row_ || q.col < row_run_.first || q.col > row_run_.last) {
+      row_run_ = measure_raised_run(cloud_, ws_, q.row * w_, 1, w_, q.col, raised_min_, inv_fx_);
+      row_run_row_ = q.row;
+    }
+    return row_run_;
+  }
+  // Width and peak of the column run through q.
+  void column(Pixel q, float* width_m, float* peak_m) {
+    const int c = q.col;
+    if (!is_raised(ws_, q.row * w_ + c, raised_min_)) {
+      const RaisedRun run =
+          measure_raised_run(cloud_, ws_, c, w_, rows_, q.row, raised_min_, inv_fy_);
+      *width_m = run.width_m;
+      *peak_m = run.peak_m;
+      return;
+    }
+    if (q.row < ws_.column_run_first[c] || q.row > ws_.column_run_last[c]) {
+      const RaisedRun run =
+          measure_raised_run(cloud_, ws_, c, w_, rows_, q.row, raised_min_, inv_fy_);
+      ws_.column_run_first[c] = run.first;
+      ws_.column_run_last[c] = run.last;
+      ws_.column_run_width_m[c] = run.width_m;
+      ws_.column_run_peak_m[c] = run.peak_m;
+    }
+    *width_m = ws_.column_run_width_m[c];
+    *peak_m = ws_.column_run_peak_m[c];
+  }
+
+ private:
+  const OrganizedCloud& cloud_;
+  Workspace& ws_;
+  int w_, rows_;
+  float raised_min_, inv_fx_, inv_fy_;
+  RaisedRun row_run_, own_run_;
+  int row_run_row_ = -1;
+};
+
 }  // namespace
 
 std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
@@ -173,19 +235,28 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
   // pixel.
   const float fx_plus = scale.fx_px * x_plus, fx_minus = scale.fx_px * x_minus;
   const float fy_plus = scale.fy_px * y_plus, fy_minus = scale.fy_px * y_minus;
+  // The probes are skipped where the raised run through the pixel in that
+  // direction is already outside the side width test's range: that test
+  // would reject the pixel whatever the probes found, and on a frame full
+  // of instruments most raised pixels are such.
+  const HandrailGeometry& h = cfg.handrail;
+  const float width_min = cfg.side_width_min_ratio * h.bar_width_m;
+  const float width_max = cfg.side_width_max_ratio * std::fmax(h.bar_width_m, h.bar_depth_m);
+  auto plausible = [&](float width_m) { return width_m > width_min && width_m < width_max; };
+  RunCache runs(cloud, cfg, scale, ws);
   ws.cross.clear();
   AscendingPixels pixel_of(cloud);
   for (std::int32_t i : ws.gap) {
     const Pixel q = pixel_of(i);
     const float inv_z = 1.0f / cloud.points[i].z_m;
-    const int xp = round_to_int(fx_plus * inv_z);
-    const int xm = round_to_int(fx_minus * inv_z);
-    const int yp = round_to_int(fy_plus * inv_z);
-    const int ym = round_to_int(fy_minus * inv_z);
-    const bool x_ok =
-        probe_on_wall(cloud, ws, q, 0, 1, xp) && probe_on_wall(cloud, ws, q, 0, -1, xm);
-    const bool y_ok =
-        probe_on_wall(cloud, ws, q, 1, 0, yp) && probe_on_wall(cloud, ws, q, -1, 0, ym);
+    float column_width = 0.0f, column_peak = 0.0f;
+    runs.column(q, &column_width, &column_peak);
+    const bool x_ok = plausible(runs.row(q).width_m) &&
+                      probe_on_wall(cloud, ws, q, 0, 1, round_to_int(fx_plus * inv_z)) &&
+                      probe_on_wall(cloud, ws, q, 0, -1, round_to_int(fx_minus * inv_z));
+    const bool y_ok = plausible(column_width) &&
+                      probe_on_wall(cloud, ws, q, 1, 0, round_to_int(fy_plus * inv_z)) &&
+                      probe_on_wall(cloud, ws, q, -1, 0, round_to_int(fy_minus * inv_z));
     if (x_ok) ws.flags[i] |= kFlagCrossX;
     if (y_ok) ws.flags[i] |= kFlagCrossY;
     if (x_ok || y_ok) ws.cross.push(i);
@@ -197,14 +268,8 @@ void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
   const HandrailGeometry& h = cfg.handrail;
   const float width_min = cfg.side_width_min_ratio * h.bar_width_m;
   const float width_max = cfg.side_width_max_ratio * std::fmax(h.bar_width_m, h.bar_depth_m);
-  const float raised_min = gap_min_m(cfg);
   const float front = h.bar_center_offset_m + 0.5f * h.bar_depth_m;
-  const int w = static_cast<int>(cloud.width), rows = static_cast<int>(cloud.height);
-  // Cross points come in row-major order, so one remembered row run serves
-  // all its pixels; each column remembers its last run the same way.
-  RaisedRun row_run;
-  int row_run_row = -1;
-  for (int c = 0; c < w; ++c) ws.column_run_last[c] = -1;
+  RunCache runs(cloud, cfg, scale, ws);
   ws.side.clear();
   AscendingPixels pixel_of(cloud);
   for (std::int32_t i : ws.cross) {
@@ -220,24 +285,13 @@ void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
     };
     bool pass = false;
     if (ws.flags[i] & kFlagCrossX) {
-      if (q.row != row_run_row || q.col < row_run.first || q.col > row_run.last) {
-        row_run =
-            measure_raised_run(cloud, ws, q.row * w, 1, w, q.col, raised_min, 1.0f / scale.fx_px);
-        row_run_row = q.row;
-      }
-      pass = passes(row_run.width_m, row_run.peak_m);
+      const RaisedRun& run = runs.row(q);
+      pass = passes(run.width_m, run.peak_m);
     }
     if (!pass && (ws.flags[i] & kFlagCrossY)) {
-      const int c = q.col;
-      if (q.row < ws.column_run_first[c] || q.row > ws.column_run_last[c]) {
-        const RaisedRun run =
-            measure_raised_run(cloud, ws, c, w, rows, q.row, raised_min, 1.0f / scale.fy_px);
-        ws.column_run_first[c] = run.first;
-        ws.column_run_last[c] = run.last;
-        ws.column_run_width_m[c] = run.width_m;
-        ws.column_run_peak_m[c] = run.peak_m;
-      }
-      pass = passes(ws.column_run_width_m[c], ws.column_run_peak_m[c]);
+      float width = 0.0f, peak = 0.0f;
+      runs.column(q, &width, &peak);
+      pass = passes(width, peak);
     }
     if (pass) {
       ws.flags[i] |= kFlagSide;

@@ -120,8 +120,9 @@ void test_fit_plane_orients_toward_camera(void**) {
 
 void test_filters_keep_the_bar_and_drop_a_thin_cable(void**) {
   SyntheticScene s = bar_scene();
-  // A 6 mm cable at the bar's height, 12 cm to the side: passes the gap and
-  // cross tests but not the width test.
+  // A 6 mm cable at the bar's height, 12 cm to the side: passes the gap test;
+  // its raised run is narrower than the side width test allows, so the
+  // cross test does not even probe it.
   s.cylinders.push_back(testing_support::vertical_bar(kWall, kOffset, 0.3, 0.003, 0.12));
   std::vector<CloudPoint> pts;
   const OrganizedCloud cloud = testing_support::render(s, &pts);
@@ -141,7 +142,7 @@ void test_filters_keep_the_bar_and_drop_a_thin_cable(void**) {
   assert_false(bar & kFlagCrossY);  // along the bar, the probes land on the bar
   assert_true(bar & kFlagSide);
   assert_true(cable & kFlagGap);
-  assert_true(cable & kFlagCrossX);
+  assert_false(cable & (kFlagCrossX | kFlagCrossY));
   assert_false(cable & kFlagSide);
   assert_false(wall & kFlagGap);
   assert_true(ws.side.size() > 100);
