@@ -16,6 +16,7 @@ SimGripperBoard::~SimGripperBoard() {
 
 bool SimGripperBoard::start(std::string* error) {
   if (!pty_.open(error)) return false;
+  line_.attach(pty_.master_fd());
   {
     std::lock_guard<std::mutex> lock(mutex_);
     gfw_init(&fw_, static_cast<std::uint32_t>(clock_.now_us() / 1000));
@@ -53,14 +54,6 @@ GripperSnapshot SimGripperBoard::snapshot() const {
   return s;
 }
 
-void SimGripperBoard::send(const std::uint8_t* bytes, std::size_t n) {
-  std::size_t sent = 0;
-  for (int tries = 0; sent < n && tries < 100; ++tries) {
-    const ssize_t w = ::write(pty_.master_fd(), bytes + sent, n - sent);
-    if (w > 0) sent += static_cast<std::size_t>(w);
-  }
-}
-
 // A DC gearmotor: the speed follows the applied voltage with a first-order
 // lag; the current is what the voltage left after back-EMF drives through
 // the winding. A stop (hard stop or handrail) holds the speed at zero.
@@ -91,15 +84,8 @@ void SimGripperBoard::run() {
     struct pollfd p = {pty_.master_fd(), POLLIN, 0};
     poll(&p, 1, 1);
     const std::int64_t now_us = clock_.now_us();
-    for (std::size_t k = 0; k < n_late_;) {
-      if (late_[k].due_us <= now_us) {
-        send(late_[k].bytes, late_[k].n);
-        late_[k] = late_[--n_late_];
-      } else {
-        ++k;
-      }
-    }
     const std::uint32_t now_ms = static_cast<std::uint32_t>(now_us / 1000);
+    line_.send_due(now_us);
     BusFaults faults;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -118,7 +104,7 @@ void SimGripperBoard::run() {
     if (!(p.revents & POLLIN)) continue;
     const ssize_t n = ::read(pty_.master_fd(), rx, sizeof(rx));
     if (n <= 0) continue;
-    if (faults.echo) send(rx, static_cast<std::size_t>(n));
+    if (faults.echo) line_.send_now(rx, static_cast<std::size_t>(n));
     for (ssize_t k = 0; k < n; ++k) {
       std::uint8_t out[GFW_MAX_REPLY];
       std::size_t out_n = 0;
@@ -130,30 +116,9 @@ void SimGripperBoard::run() {
         std::copy(fw_.tx, fw_.tx + out_n, out);
         fw_.tx_len = 0;
       }
-      if (out_n == 0 || faults.no_reply) continue;
-      auto uniform = [this] {
-        std::uint64_t z = (rng_state_ += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-      };
-      if (uniform() < faults.corrupt_checksum_probability) out[out_n - 1] ^= 0x15;
-      std::uint8_t kept[GFW_MAX_REPLY];
-      std::size_t kept_n = 0;
-      for (std::size_t b = 0; b < out_n; ++b) {
-        if (uniform() >= faults.drop_byte_probability) kept[kept_n++] = out[b];
-      }
-      if (faults.late_reply_us > 0) {
-        if (n_late_ < kMaxLate) {
-          LateReply& r = late_[n_late_++];
-          r.due_us = now_us + faults.late_reply_us;
-          r.n = kept_n;
-          std::copy(kept, kept + kept_n, r.bytes);
-        }
-        continue;
-      }
-      send(kept, kept_n);
+      line_.reply(out, out_n, now_us, faults);
     }
+    line_.send_due(now_us);  // a reply not held back goes out at once
   }
 }
 

@@ -50,9 +50,10 @@ void usage(FILE* out) {
       "  monitor [SECONDS]         joints 1 and 2 and the gripper at 10 Hz\n");
 }
 
-bool fail(const char* what, const std::string& detail) {
+// Reports a failure; returns the exit status to use (1: the device, 2: usage).
+int fail(const char* what, const std::string& detail, int status = 1) {
   std::fprintf(stderr, "armctl: %s: %s\n", what, detail.c_str());
-  return false;
+  return status;
 }
 
 std::string describe(const dynamixel::BusResult& r) {
@@ -114,9 +115,6 @@ int main(int argc, char** argv) {
   hal::MonotonicClock clock;
   const std::string& cmd = words[0];
 
-  if (cmd == "gripper" || cmd == "monitor") {
-    // The gripper side (and the monitor, which uses both).
-  }
   hal::LinuxSerialPort bus_port(&clock), gripper_port(&clock);
   std::string error;
   const bool needs_bus = cmd != "gripper";
@@ -124,13 +122,13 @@ int main(int argc, char** argv) {
   if (needs_bus) {
     if (bus_port.open(port_path, static_cast<std::uint32_t>(baud), &error) !=
         hal::SerialStatus::kOk) {
-      return fail("Dynamixel port", error + " (is the adapter plugged in? see --port)") ? 0 : 1;
+      return fail("Dynamixel port", error + " (is the adapter plugged in? see --port)");
     }
     bus_port.set_echo_suppression(echo);
   }
   if (needs_gripper) {
     if (gripper_port.open(gripper_path, 115200, &error) != hal::SerialStatus::kOk) {
-      return fail("gripper port", error + " (see --gripper-port)") ? 0 : 1;
+      return fail("gripper port", error + " (see --gripper-port)");
     }
   }
   dynamixel::Bus bus(bus_port, clock);
@@ -157,11 +155,11 @@ int main(int argc, char** argv) {
   if (cmd == "read") {
     std::uint8_t out[64];
     const long len = num(3);
-    if (len <= 0 || len > 64) return fail("read", "LENGTH must be 1..64") ? 0 : 2;
+    if (len <= 0 || len > 64) return fail("read", "LENGTH must be 1..64", 2);
     const dynamixel::BusResult r =
         bus.read(static_cast<std::uint8_t>(num(1)), static_cast<std::uint8_t>(num(2)),
                  static_cast<std::uint8_t>(len), out);
-    if (r.status != dynamixel::BusStatus::kOk) return fail("read", describe(r)) ? 0 : 1;
+    if (r.status != dynamixel::BusStatus::kOk) return fail("read", describe(r));
     for (long k = 0; k < len; ++k) std::printf("%ld: %u\n", num(2) + k, out[k]);
     return 0;
   }
@@ -170,12 +168,12 @@ int main(int argc, char** argv) {
     std::size_t n = 0;
     for (std::size_t k = 3; k < words.size() && n < sizeof(data); ++k)
       data[n++] = static_cast<std::uint8_t>(num(k));
-    if (n == 0) return fail("write", "give at least one BYTE") ? 0 : 2;
+    if (n == 0) return fail("write", "give at least one BYTE", 2);
     const dynamixel::BusResult r =
         bus.write(static_cast<std::uint8_t>(num(1)), static_cast<std::uint8_t>(num(2)), data,
                   static_cast<std::uint8_t>(n));
     std::printf("%s\n", describe(r).c_str());
-    return r.ok() ? 0 : 1;
+    return r.ok();
   }
   if (cmd == "torque" || cmd == "move" || cmd == "recover") {
     dynamixel::ax12::Servo servo(bus, static_cast<std::uint8_t>(num(1)));
@@ -191,7 +189,7 @@ int main(int argc, char** argv) {
       if (r.ok()) r = servo.set_goal_position(std::atof(arg(2).c_str()) * kDegToRad);
     }
     std::printf("%s\n", describe(r).c_str());
-    return r.ok() ? 0 : 1;
+    return r.ok();
   }
   if (cmd == "gripper") {
     const std::string what = arg(1);
@@ -218,10 +216,10 @@ int main(int argc, char** argv) {
     } else if (what == "stop") {
       s = board.stop();
     } else {
-      return fail("gripper", "unknown subcommand '" + what + "' (see --help)") ? 0 : 2;
+      return fail("gripper", "unknown subcommand '" + what + "' (see --help)", 2);
     }
     if (s != gripper::Status::kOk) {
-      return fail("gripper", std::string(gripper::to_string(s)) + " on " + gripper_path) ? 0 : 1;
+      return fail("gripper", std::string(gripper::to_string(s)) + " on " + gripper_path);
     }
     return 0;
   }

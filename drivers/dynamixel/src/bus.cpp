@@ -166,26 +166,24 @@ BusResult Bus::read(std::uint8_t id, std::uint8_t address, std::uint8_t length, 
   return r;
 }
 
-BusResult Bus::write(std::uint8_t id, std::uint8_t address, const std::uint8_t* data,
-                     std::uint8_t length) {
+BusResult Bus::write_at(Instruction instruction, std::uint8_t id, std::uint8_t address,
+                        const std::uint8_t* data, std::uint8_t length) {
   if (length == 0 || length + 1u > kMaxParams || data == nullptr) {
     return {BusStatus::kInvalidArgument};
   }
   params_[0] = address;
   std::memcpy(params_ + 1, data, length);
-  return transact(id, Instruction::kWrite, params_, length + 1u,
-                  replies_to(Instruction::kWrite, id), 0, nullptr);
+  return transact(id, instruction, params_, length + 1u, replies_to(instruction, id), 0, nullptr);
+}
+
+BusResult Bus::write(std::uint8_t id, std::uint8_t address, const std::uint8_t* data,
+                     std::uint8_t length) {
+  return write_at(Instruction::kWrite, id, address, data, length);
 }
 
 BusResult Bus::reg_write(std::uint8_t id, std::uint8_t address, const std::uint8_t* data,
                          std::uint8_t length) {
-  if (length == 0 || length + 1u > kMaxParams || data == nullptr) {
-    return {BusStatus::kInvalidArgument};
-  }
-  params_[0] = address;
-  std::memcpy(params_ + 1, data, length);
-  return transact(id, Instruction::kRegWrite, params_, length + 1u,
-                  replies_to(Instruction::kRegWrite, id), 0, nullptr);
+  return write_at(Instruction::kRegWrite, id, address, data, length);
 }
 
 BusResult Bus::action(std::uint8_t id) {

@@ -46,22 +46,10 @@ std::uint8_t checksum(std::uint8_t id, std::uint8_t length, std::uint8_t instruc
   return static_cast<std::uint8_t>(~sum & 0xFFu);
 }
 
-std::size_t encode_instruction(std::uint8_t id, Instruction instruction, const std::uint8_t* params,
-                               std::size_t n_params, std::uint8_t* out) {
-  if (n_params > kMaxParams) return 0;
-  const std::uint8_t length = static_cast<std::uint8_t>(n_params + 2);
-  const std::uint8_t inst = static_cast<std::uint8_t>(instruction);
-  out[0] = 0xFF;
-  out[1] = 0xFF;
-  out[2] = id;
-  out[3] = length;
-  out[4] = inst;
-  for (std::size_t k = 0; k < n_params; ++k) out[5 + k] = params[k];
-  out[5 + n_params] = checksum(id, length, inst, params, n_params);
-  return n_params + 6;
-}
-
-std::size_t encode_status(std::uint8_t id, std::uint8_t error, const std::uint8_t* params,
+namespace {
+// Both directions share the framing: FF FF ID LEN CODE params CHK, where
+// CODE is the instruction or the error byte.
+std::size_t encode_packet(std::uint8_t id, std::uint8_t code, const std::uint8_t* params,
                           std::size_t n_params, std::uint8_t* out) {
   if (n_params > kMaxParams) return 0;
   const std::uint8_t length = static_cast<std::uint8_t>(n_params + 2);
@@ -69,10 +57,21 @@ std::size_t encode_status(std::uint8_t id, std::uint8_t error, const std::uint8_
   out[1] = 0xFF;
   out[2] = id;
   out[3] = length;
-  out[4] = error;
+  out[4] = code;
   for (std::size_t k = 0; k < n_params; ++k) out[5 + k] = params[k];
-  out[5 + n_params] = checksum(id, length, error, params, n_params);
+  out[5 + n_params] = checksum(id, length, code, params, n_params);
   return n_params + 6;
+}
+}  // namespace
+
+std::size_t encode_instruction(std::uint8_t id, Instruction instruction, const std::uint8_t* params,
+                               std::size_t n_params, std::uint8_t* out) {
+  return encode_packet(id, static_cast<std::uint8_t>(instruction), params, n_params, out);
+}
+
+std::size_t encode_status(std::uint8_t id, std::uint8_t error, const std::uint8_t* params,
+                          std::size_t n_params, std::uint8_t* out) {
+  return encode_packet(id, error, params, n_params, out);
 }
 
 ParseEvent StatusParser::push(std::uint8_t byte) {

@@ -11,8 +11,8 @@
 
 #include "gripper_fw.h"
 #include "hal/clock.hpp"
+#include "sim_hal/device_line.hpp"
 #include "sim_hal/pty.hpp"
-#include "sim_hal/sim_servo_bus.hpp"
 
 namespace sim_hal {
 
@@ -48,16 +48,6 @@ class SimGripperBoard {
 
  private:
   void run();
-  void send(const std::uint8_t* bytes, std::size_t n);
-  // Replies held back by the late-reply fault, sent when due.
-  struct LateReply {
-    std::int64_t due_us = 0;
-    std::size_t n = 0;
-    std::uint8_t bytes[GFW_MAX_REPLY] = {};
-  };
-  static constexpr std::size_t kMaxLate = 8;
-  LateReply late_[kMaxLate];
-  std::size_t n_late_ = 0;
   void step_motor(double dt_s, int pwm);
 
   GripperModel model_;
@@ -70,7 +60,7 @@ class SimGripperBoard {
   double position_ = 0.0, velocity_ = 0.0, current_a_ = 0.0;
   int handrail_raw_ = -1;
   BusFaults faults_;
-  std::uint64_t rng_state_ = 7;
+  DeviceLine line_{7};  // the board thread's only
 };
 
 }  // namespace sim_hal

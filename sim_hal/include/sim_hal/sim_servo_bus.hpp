@@ -11,18 +11,11 @@
 #include <vector>
 
 #include "hal/clock.hpp"
+#include "sim_hal/device_line.hpp"
 #include "sim_hal/pty.hpp"
 #include "sim_hal/sim_servo.hpp"
 
 namespace sim_hal {
-
-struct BusFaults {
-  double drop_byte_probability = 0.0;  // each reply byte, independently
-  double corrupt_checksum_probability = 0.0;
-  std::uint32_t late_reply_us = 0;  // added to every reply
-  bool no_reply = false;            // the servos stay silent
-  bool echo = false;                // the adapter hears what is sent (half duplex)
-};
 
 class SimServoBus {
  public:
@@ -46,19 +39,6 @@ class SimServoBus {
 
  private:
   void run();
-  void send(const std::uint8_t* bytes, std::size_t n);
-  // Replies wait in a small queue until their time (return delay, injected
-  // lateness), so a late reply does not hold up the bus thread.
-  void queue_reply(const std::uint8_t* bytes, std::size_t n, std::int64_t due_us);
-  void send_due_replies(std::int64_t now_us);
-  struct PendingReply {
-    std::int64_t due_us = 0;
-    std::size_t n = 0;
-    std::uint8_t bytes[dynamixel::kMaxPacket] = {};
-  };
-  static constexpr std::size_t kMaxPending = 16;
-  PendingReply pending_[kMaxPending];
-  std::size_t n_pending_ = 0;
   SimServo* find(std::uint8_t id);
 
   PtyDevice pty_;
@@ -70,7 +50,7 @@ class SimServoBus {
   std::vector<SimServo> servos_;
   std::vector<double> torques_;
   BusFaults faults_;
-  std::uint64_t rng_state_;
+  DeviceLine line_;  // the bus thread's only
 };
 
 }  // namespace sim_hal

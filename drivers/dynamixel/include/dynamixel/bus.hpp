@@ -82,6 +82,9 @@ class Bus {
   BusResult transact(std::uint8_t id, Instruction instruction, const std::uint8_t* params,
                      std::size_t n_params, bool expect_reply, std::size_t expect_params,
                      StatusPacket* reply);
+  // WRITE and REG_WRITE: the address, then the data.
+  BusResult write_at(Instruction instruction, std::uint8_t id, std::uint8_t address,
+                     const std::uint8_t* data, std::uint8_t length);
   BusResult wait_reply(std::uint8_t id, std::size_t expect_params, std::int64_t deadline_us,
                        StatusPacket* reply);
   bool replies_to(Instruction instruction, std::uint8_t id) const;
