@@ -1,5 +1,8 @@
 #include "arm/arm_model.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace arm {
 
 const char* to_string(Posture posture) {
@@ -14,16 +17,16 @@ const char* to_string(Posture posture) {
   return "UNKNOWN";
 }
 
-JointAngles posture_angles(Posture posture) {
+JointAngles posture_angles(const ArmGeometry& g, Posture posture) {
   switch (posture) {
     case Posture::kStow:
-      return {90.0 * M_PI / 180.0, 0.0};
+      return g.stow;
     case Posture::kDeploy:
-      return {0.0, 0.0};
+      return g.deploy;
     case Posture::kGrip:
-      return {0.0, 0.0};
+      return g.grip;
   }
-  return {};
+  return g.stow;
 }
 
 bool within_limits(const ArmGeometry& g, const JointAngles& q) {
@@ -40,6 +43,34 @@ Eigen::Isometry3d forward_kinematics(const ArmGeometry& g, const JointAngles& q)
   T.rotate(Eigen::AngleAxisd(q.pan_rad, Eigen::Vector3d::UnitZ()));
   T.translate(Eigen::Vector3d(g.distal_link_m, 0.0, 0.0));
   return T;
+}
+
+bool pointing_angles(const ArmGeometry& g, const Eigen::Vector3d& forward_in_grasp,
+                     const JointAngles& current, JointAngles* q) {
+  const double n = forward_in_grasp.norm();
+  if (!(n > 1e-9)) return false;
+  const Eigen::Vector3d d = forward_in_grasp / n;
+  // From forward_kinematics, the body's x axis seen from the grasp frame is
+  // (-cos t cos p, cos t sin p, -sin t): tilt from its z, pan from x and y.
+  const double tilt = std::asin(std::clamp(-d.z(), -1.0, 1.0));
+  const double pan = std::atan2(d.y(), -d.x());
+  // The other solution flips the tilt over the top and turns pan by half a
+  // turn.
+  const auto wrap = [](double a) { return std::remainder(a, 2.0 * M_PI); };
+  const JointAngles candidates[2] = {{tilt, pan}, {wrap(M_PI - tilt), wrap(pan + M_PI)}};
+  bool found = false;
+  double best = 0.0;
+  for (const JointAngles& c : candidates) {
+    if (!within_limits(g, c)) continue;
+    const double dist =
+        std::fabs(c.tilt_rad - current.tilt_rad) + std::fabs(c.pan_rad - current.pan_rad);
+    if (!found || dist < best) {
+      found = true;
+      best = dist;
+      *q = c;
+    }
+  }
+  return found;
 }
 
 }  // namespace arm

@@ -37,6 +37,11 @@ void SimGripperBoard::set_handrail_raw(int raw) {
   handrail_raw_ = raw;
 }
 
+void SimGripperBoard::set_winding_short(bool shorted) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  winding_short_ = shorted;
+}
+
 void SimGripperBoard::set_faults(const BusFaults& faults) {
   std::lock_guard<std::mutex> lock(mutex_);
   faults_ = faults;
@@ -74,7 +79,8 @@ void SimGripperBoard::step_motor(double dt_s, int pwm) {
     velocity_ = std::max(velocity_, 0.0);
   }
   position_ = next;
-  current_a_ = std::fabs(volts - ke * velocity_) / model_.winding_ohm;
+  const double ohm = winding_short_ ? model_.winding_ohm / 4.0 : model_.winding_ohm;
+  current_a_ = std::fabs(volts - (winding_short_ ? 0.0 : ke * velocity_)) / ohm;
 }
 
 void SimGripperBoard::run() {

@@ -243,4 +243,11 @@ void SimServo::step(double dt_s, double external_torque_nm) {
   table_[46] = std::fabs(goal - position_rad_) > kRadPerUnit && torque_on ? 1 : 0;
 }
 
+void SimServo::set_position_rad(double angle_rad) {
+  position_rad_ = std::clamp(angle_rad, -512.0 * kRadPerUnit, 511.0 * kRadPerUnit);
+  const long units = std::lround(512.0 + position_rad_ / kRadPerUnit);
+  set16(30, static_cast<std::uint16_t>(std::clamp(units, 0L, 1023L)));
+  set16(36, static_cast<std::uint16_t>(std::clamp(units, 0L, 1023L)));
+}
+
 }  // namespace sim_hal

@@ -61,6 +61,11 @@ void SimServoBus::set_external_torque(std::uint8_t id, double torque_nm) {
     if (servos_[k].id() == id) torques_[k] = torque_nm;
 }
 
+void SimServoBus::set_position(std::uint8_t id, double angle_rad) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (SimServo* s = find(id)) s->set_position_rad(angle_rad);
+}
+
 bool SimServoBus::servo(std::uint8_t id, SimServo* out) const {
   std::lock_guard<std::mutex> lock(mutex_);
   for (const SimServo& s : servos_) {

@@ -8,7 +8,7 @@ namespace {
 void test_deployed_arm_points_aft(void**) {
   const arm::ArmGeometry g;
   const Eigen::Isometry3d T =
-      arm::forward_kinematics(g, arm::posture_angles(arm::Posture::kDeploy));
+      arm::forward_kinematics(g, arm::posture_angles(g, arm::Posture::kDeploy));
   const double reach = g.proximal_link_m + g.distal_link_m;
   assert_near(T.translation().x(), g.p_body_base.x() - reach, 1e-9);
   assert_near(T.translation().y(), g.p_body_base.y(), 1e-9);
@@ -34,11 +34,47 @@ void test_tilt_and_pan_move_the_gripper(void**) {
 void test_limits_and_postures(void**) {
   const arm::ArmGeometry g;
   for (arm::Posture p : {arm::Posture::kStow, arm::Posture::kDeploy, arm::Posture::kGrip}) {
-    assert_true(arm::within_limits(g, arm::posture_angles(p)));
+    assert_true(arm::within_limits(g, arm::posture_angles(g, p)));
   }
   assert_false(arm::within_limits(g, {-2.2, 0.0}));  // beyond -120 deg tilt
   assert_false(arm::within_limits(g, {0.0, 1.7}));   // beyond 90 deg pan
   assert_string_equal(arm::to_string(arm::Posture::kStow), "STOW");
+}
+
+// The body's x axis seen from the grasp frame, by forward kinematics.
+Eigen::Vector3d body_forward_in_grasp(const arm::ArmGeometry& g, const arm::JointAngles& q) {
+  const Eigen::Isometry3d T_body_grasp = arm::forward_kinematics(g, q);
+  return T_body_grasp.rotation().transpose() * Eigen::Vector3d::UnitX();
+}
+
+void test_pointing_inverts_forward_kinematics(void**) {
+  const arm::ArmGeometry g;
+  int checked = 0;
+  for (double tilt = -1.5; tilt <= 1.5; tilt += 0.25) {
+    for (double pan = -1.5; pan <= 1.5; pan += 0.25) {
+      const arm::JointAngles want{tilt, pan};
+      const Eigen::Vector3d d = body_forward_in_grasp(g, want);
+      arm::JointAngles got;
+      assert_true(arm::pointing_angles(g, 3.0 * d, want, &got));  // any length
+      // The same direction, and from the current angles, the same angles.
+      assert_true((body_forward_in_grasp(g, got) - d).norm() < 1e-9);
+      assert_near(got.tilt_rad, tilt, 1e-9);
+      assert_near(got.pan_rad, pan, 1e-9);
+      ++checked;
+    }
+  }
+  assert_true(checked > 100);
+}
+
+void test_pointing_refuses_unreachable_directions(void**) {
+  const arm::ArmGeometry g;
+  arm::JointAngles q{0.25, -0.5};
+  const arm::JointAngles before = q;
+  assert_false(arm::pointing_angles(g, Eigen::Vector3d::Zero(), before, &q));
+  // Looking back along the link (body x = grasp +x) needs pan 180 deg.
+  assert_false(arm::pointing_angles(g, Eigen::Vector3d::UnitX(), before, &q));
+  assert_near(q.tilt_rad, before.tilt_rad, 0.0);  // untouched on failure
+  assert_near(q.pan_rad, before.pan_rad, 0.0);
 }
 
 }  // namespace
@@ -48,6 +84,8 @@ int main() {
       cmocka_unit_test(test_deployed_arm_points_aft),
       cmocka_unit_test(test_tilt_and_pan_move_the_gripper),
       cmocka_unit_test(test_limits_and_postures),
+      cmocka_unit_test(test_pointing_inverts_forward_kinematics),
+      cmocka_unit_test(test_pointing_refuses_unreachable_directions),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

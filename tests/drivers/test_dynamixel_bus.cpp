@@ -2,37 +2,16 @@
 // on a real pseudo-terminal: normal operation, the control table's rules,
 // every injected fault, alarm recovery, a scan, and no allocation in the
 // bus's steady state.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 #include <thread>
 
+#include "allocation_counter.hpp"
 #include "cmocka_cpp.hpp"
 #include "dynamixel/ax12.hpp"
 #include "dynamixel/bus.hpp"
 #include "hal/linux_serial_port.hpp"
 #include "sim_hal/sim_servo_bus.hpp"
-
-namespace {
-std::atomic<bool> g_armed{false};
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (g_armed.load(std::memory_order_relaxed)) g_allocations.fetch_add(1);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  std::abort();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 using dynamixel::BusStatus;
 namespace ax12 = dynamixel::ax12;
@@ -234,15 +213,13 @@ void test_no_allocation_in_steady_state(void**) {
   ax12::Servo servo(rig.bus, 1);
   ax12::ServoState state;
   assert_true(servo.read_state(&state).ok());  // warm up
-  g_allocations = 0;
-  g_armed = true;
+  alloc_counter::arm();
   for (int k = 0; k < 300; ++k) {
     servo.read_state(&state);
     servo.set_goal_position(0.1 * (k % 5));
     rig.bus.ping(2);
   }
-  g_armed = false;
-  assert_int_equal(g_allocations.load(), 0);
+  assert_int_equal(alloc_counter::disarm(), 0);
 }
 
 }  // namespace

@@ -1,82 +1,24 @@
 // Proof that the detector allocates nothing while it processes frames:
-// every operator new and (outside AddressSanitizer) every malloc in the
-// process is counted while armed, over hundreds of frames.
-// This file replaces operator new/delete with malloc/free; GCC cannot see
-// that the pair belongs together once inlined.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-#include <atomic>
-#include <cstdlib>
-#include <new>
+// every operator new and (outside AddressSanitizer) every malloc on the
+// test's thread is counted while armed, over hundreds of frames.
 #include <vector>
 
+#include "allocation_counter.hpp"
 #include "cmocka_cpp.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "recorded_frames.hpp"
 #include "synthetic_cloud.hpp"
-
-namespace {
-std::atomic<bool> g_armed{false};
-std::atomic<long> g_allocations{0};
-void note_allocation() {
-  if (g_armed.load(std::memory_order_relaxed))
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
-}
-}  // namespace
-
-void* operator new(std::size_t n) {
-  note_allocation();
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  std::abort();
-}
-void* operator new[](std::size_t n) {
-  note_allocation();
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  std::abort();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-
-#if !defined(__SANITIZE_ADDRESS__)
-// glibc's own allocator under the hooks.
-extern "C" void* __libc_malloc(std::size_t);
-extern "C" void* __libc_calloc(std::size_t, std::size_t);
-extern "C" void* __libc_realloc(void*, std::size_t);
-extern "C" void* malloc(std::size_t n) {
-  note_allocation();
-  return __libc_malloc(n);
-}
-extern "C" void* calloc(std::size_t a, std::size_t b) {
-  note_allocation();
-  return __libc_calloc(a, b);
-}
-extern "C" void* realloc(void* p, std::size_t n) {
-  note_allocation();
-  return __libc_realloc(p, n);
-}
-#endif
 
 using namespace estimator;
 
 namespace {
 
 void test_counter_counts(void**) {
-  g_allocations = 0;
-  g_armed = true;
+  alloc_counter::arm();
   std::vector<int>* v = new std::vector<int>(10);
-  g_armed = false;
+  const long n = alloc_counter::disarm();
   delete v;
-  assert_true(g_allocations >= 2);  // the vector object and its storage
+  assert_true(n >= 2);  // the vector object and its storage
 }
 
 void test_no_allocation_over_hundreds_of_frames(void**) {
@@ -112,8 +54,7 @@ void test_no_allocation_over_hundreds_of_frames(void**) {
   HandrailDetector iss(iss_cfg), round(round_cfg), synthetic(synthetic_cfg);
   HandrailDetector* detector_for[] = {&iss, &round, &iss, &synthetic, &synthetic};
   int found = 0;
-  g_allocations = 0;
-  g_armed = true;
+  alloc_counter::arm();
   for (int n = 0; n < 300; ++n) {
     OrganizedCloud c = clouds[static_cast<std::size_t>(n) % clouds.size()];
     c.frame_id = static_cast<std::uint64_t>(n);  // new random numbers each frame
@@ -121,10 +62,9 @@ void test_no_allocation_over_hundreds_of_frames(void**) {
     found += detector_for[static_cast<std::size_t>(n) % clouds.size()]->detect(c, m).status ==
              DetectStatus::kFound;
   }
-  g_armed = false;
-  if (g_allocations != 0)
-    print_error("%ld allocations while processing frames\n", g_allocations.load());
-  assert_int_equal(g_allocations.load(), 0);
+  const long allocations = alloc_counter::disarm();
+  if (allocations != 0) print_error("%ld allocations while processing frames\n", allocations);
+  assert_int_equal(allocations, 0);
   assert_true(found > 100);  // the frames exercised the full pipeline
 }
 

@@ -15,29 +15,42 @@ struct JointLimits {
   bool contains(double q) const { return q >= min_rad && q <= max_rad; }
 };
 
+struct JointAngles {
+  double tilt_rad = 0.0;
+  double pan_rad = 0.0;
+};
+
 struct ArmGeometry {
   Eigen::Vector3d p_body_base = Eigen::Vector3d(-0.16, 0.0, -0.05);  // tilt joint, m
   double proximal_link_m = 0.10;                                     // tilt axis to pan axis
   double distal_link_m = 0.14;  // pan axis to the gripper's grasp point
   JointLimits tilt{-120.0 * M_PI / 180.0, 90.0 * M_PI / 180.0};
   JointLimits pan{-90.0 * M_PI / 180.0, 90.0 * M_PI / 180.0};
+  // Postures. Stowed folds the arm against the body; deployed holds the
+  // link straight aft; grip is deployed with the gripper square to the
+  // wall, so that once perched the link stands normal to the wall.
+  JointAngles stow{90.0 * M_PI / 180.0, 0.0};
+  JointAngles deploy{0.0, 0.0};
+  JointAngles grip{0.0, 0.0};
 };
 
-struct JointAngles {
-  double tilt_rad = 0.0;
-  double pan_rad = 0.0;
-};
-
-// Named postures. Stowed folds the arm under the body; deployed holds the
-// link straight aft; grip is deployed with the gripper square to the wall.
 enum class Posture { kStow, kDeploy, kGrip };
 const char* to_string(Posture posture);
-JointAngles posture_angles(Posture posture);
+JointAngles posture_angles(const ArmGeometry& g, Posture posture);
 
 bool within_limits(const ArmGeometry& g, const JointAngles& q);
 
 // The gripper's grasp frame in the body frame: origin at the grasp point,
 // x along the distal link (outward), z along the pan axis.
 Eigen::Isometry3d forward_kinematics(const ArmGeometry& g, const JointAngles& q);
+
+// Perched, the gripper is fixed to the handrail and the joints turn the
+// body about it. Given the direction in which the body's x axis (its
+// forward cameras) should point, expressed in the grasp frame, finds the
+// joint angles within limits that give it; of the two solutions, the one
+// nearer `current`. Returns false when neither is within limits or the
+// direction is zero.
+bool pointing_angles(const ArmGeometry& g, const Eigen::Vector3d& forward_in_grasp,
+                     const JointAngles& current, JointAngles* q);
 
 }  // namespace arm

@@ -44,6 +44,9 @@ class SimGripperBoard {
   // count; a negative value removes it.
   void set_handrail_raw(int raw);
   void set_faults(const BusFaults& faults);
+  // A shorted winding: while driven, the motor draws four times its
+  // normal current, enough to trip the board's absolute limit.
+  void set_winding_short(bool shorted);
   GripperSnapshot snapshot() const;
 
  private:
@@ -59,6 +62,7 @@ class SimGripperBoard {
   gfw_state fw_{};
   double position_ = 0.0, velocity_ = 0.0, current_a_ = 0.0;
   int handrail_raw_ = -1;
+  bool winding_short_ = false;
   BusFaults faults_;
   DeviceLine line_{7};  // the board thread's only
 };

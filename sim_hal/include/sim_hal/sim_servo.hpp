@@ -49,6 +49,8 @@ class SimServo {
   // Faults forced from outside (fault injection): OR-ed into the error byte
   // and acted on as the real causes would be.
   void force_error_bits(std::uint8_t bits) { forced_errors_ = bits; }
+  // Puts the output shaft at an angle (where the arm was left), goal too.
+  void set_position_rad(double angle_rad);
 
  private:
   // Applies a write of n bytes at address; returns the error bits it raises.

@@ -33,6 +33,8 @@ class SimServoBus {
   void force_error_bits(std::uint8_t id, std::uint8_t bits);
   // An external torque on a servo's output (N m), e.g. a load on the arm.
   void set_external_torque(std::uint8_t id, double torque_nm);
+  // Places a servo's shaft (and goal) at an angle, e.g. the arm stowed.
+  void set_position(std::uint8_t id, double angle_rad);
   // A copy of a servo's state, for tests and monitors.
   bool servo(std::uint8_t id, SimServo* out) const;
   std::uint64_t packets_handled() const { return packets_.load(); }

@@ -1,0 +1,75 @@
+#pragma once
+// The perch sequence as an explicit state machine:
+//
+//   INIT -> STOWED -PERCH-> DEPLOYING -> [CALIBRATING] -> OPENING -> GRIPPER_OPEN
+//   -at target-> CLOSING -> GRASP_CHECK -> PERCHED <-> PAN_TILT
+//   PERCHED -UNPERCH-> UNPERCHING -> BACKING_OFF -backed off-> STOWING -> STOWED
+//
+// A failed grasp reopens and waits for the approach again, a bounded number
+// of times. Any fault (device silent or in error, grasp failed, handrail
+// lost, a state past its timeout) goes to FAULT through one safe action:
+// joints held where they are (torque off if a servo is in alarm), the
+// gripper stopped unless it holds a handrail, in which case it keeps
+// holding. Only STOWED, PERCHED and FAULT wait without a timeout.
+//
+// step() does all the I/O and is called at a fixed rate by the arm task,
+// with the time injected. Nothing allocates; every loop is bounded.
+#include <cstdint>
+
+#include "arm/actuators.hpp"
+#include "arm/perch_config.hpp"
+#include "arm/perch_types.hpp"
+
+namespace arm {
+
+class PerchSequence {
+ public:
+  PerchSequence(JointActuators& joints, GripperActuator& gripper, const PerchConfig& config);
+
+  // Validates a command on receipt. An accepted command is carried out by
+  // the next step(); a rejected one is never acted on, and the reason shows
+  // in status().last_reject.
+  RejectCode submit(const PerchCommand& command);
+  void set_approach(const ApproachInput& approach) { approach_ = approach; }
+
+  // One control cycle: read the devices, check for faults, act on a
+  // pending command, advance the state.
+  void step(std::int64_t now_us);
+
+  const ArmStatus& status() const { return status_; }
+  PerchState state() const { return status_.state; }
+  const PerchConfig& config() const { return config_; }
+  // The state's timeout in ms, or 0 for the rest states.
+  int timeout_ms(PerchState state) const;
+
+ private:
+  bool read_devices();
+  bool check_device_faults();
+  void run_command(const PerchCommand& command);
+  void run_state();
+  void enter(PerchState state);
+  void fault(FaultCode code, const IoResult& io, const char* detail);
+  void enter_safe_state(bool servo_alarm);
+  bool holding_handrail() const;
+  bool joints_at(const JointAngles& goal) const;
+  bool command_joints(const JointAngles& goal);
+  bool require(const IoResult& io, const char* what);
+  void judge_grasp();
+  void start_stowing();
+
+  JointActuators& joints_;
+  GripperActuator& gripper_;
+  PerchConfig config_;
+  ArmStatus status_;
+  ApproachInput approach_;
+  std::int64_t now_us_ = 0;
+  bool have_time_ = false;
+  bool pending_ = false;
+  PerchCommand pending_command_;
+  std::uint8_t joint_failures_ = 0, gripper_failures_ = 0;
+  // Where CALIBRATING goes when it finishes.
+  PerchState after_calibration_ = PerchState::kStowed;
+  std::int64_t hold_since_us_ = -1;  // grasp check: when the hold was first seen
+};
+
+}  // namespace arm

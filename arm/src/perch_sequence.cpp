@@ -1,0 +1,540 @@
+#include "arm/perch_sequence.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace arm {
+namespace {
+
+// Servo error bits that mean the servo cannot be trusted to hold or move:
+// input voltage, angle limit, overheating, overload (Dynamixel 1.0 bits 0,
+// 1, 2, 5). Range, checksum and instruction errors belong to single
+// packets and come back as command failures instead.
+constexpr std::uint8_t kServoFaultBits = 0x01 | 0x02 | 0x04 | 0x20;
+constexpr std::uint8_t kServoAlarmBits = 0x04 | 0x20;  // the servo shut its torque off
+// Gripper board latched errors that end a sequence: serial timeout and
+// over-current (both leave the board in safe start). Line errors (framing,
+// CRC) only cost a retried packet.
+constexpr std::uint8_t kGripperTimeoutBit = 1u << 4;
+constexpr std::uint8_t kGripperOverCurrentBit = 1u << 5;
+
+bool is_servo(Device d) {
+  return d == Device::kTiltServo || d == Device::kPanServo;
+}
+
+FaultCode fault_for_io(const IoResult& io) {
+  if (io.status == IoStatus::kInvalid) return FaultCode::kCommandFailed;
+  if (is_servo(io.device)) {
+    return io.status == IoStatus::kDeviceError ? FaultCode::kServoError : FaultCode::kServoNoReply;
+  }
+  return io.status == IoStatus::kDeviceError ? FaultCode::kGripperError
+                                             : FaultCode::kGripperNoReply;
+}
+
+}  // namespace
+
+PerchSequence::PerchSequence(JointActuators& joints, GripperActuator& gripper,
+                             const PerchConfig& config)
+    : joints_(joints), gripper_(gripper), config_(config) {}
+
+int PerchSequence::timeout_ms(PerchState state) const {
+  const StateTimeoutsMs& t = config_.timeouts;
+  switch (state) {
+    case PerchState::kInit:
+      return t.init;
+    case PerchState::kDeploying:
+      return t.deploying;
+    case PerchState::kCalibrating:
+      return t.calibrating;
+    case PerchState::kOpening:
+      return t.opening;
+    case PerchState::kGripperOpen:
+      return t.gripper_open;
+    case PerchState::kClosing:
+      return t.closing;
+    case PerchState::kGraspCheck:
+      return t.grasp_check;
+    case PerchState::kPanTilt:
+      return t.pan_tilt;
+    case PerchState::kUnperching:
+      return t.unperching;
+    case PerchState::kBackingOff:
+      return t.backing_off;
+    case PerchState::kStowing:
+      return t.stowing;
+    case PerchState::kStowed:
+    case PerchState::kPerched:
+    case PerchState::kFault:
+      return 0;
+  }
+  return 1;  // an unnamed value still times out
+}
+
+RejectCode PerchSequence::submit(const PerchCommand& command) {
+  RejectCode code = RejectCode::kAccepted;
+  const PerchState s = status_.state;
+  if (command.kind == 0 || command.kind > kMaxCommandKind) {
+    code = RejectCode::kUnknownCommand;
+  } else {
+    switch (static_cast<CommandKind>(command.kind)) {
+      case CommandKind::kNone:
+        code = RejectCode::kUnknownCommand;
+        break;
+      case CommandKind::kPerch:
+        if (s != PerchState::kStowed) code = RejectCode::kNotAllowedInState;
+        break;
+      case CommandKind::kUnperch:
+        if (s != PerchState::kOpening && s != PerchState::kGripperOpen &&
+            s != PerchState::kClosing && s != PerchState::kGraspCheck &&
+            s != PerchState::kPerched && s != PerchState::kPanTilt && s != PerchState::kFault) {
+          code = RejectCode::kNotAllowedInState;
+        }
+        break;
+      case CommandKind::kPanTilt: {
+        const JointAngles q{command.tilt_rad, command.pan_rad};
+        if (!std::isfinite(q.tilt_rad) || !std::isfinite(q.pan_rad) ||
+            !config_.perched_tilt.contains(q.tilt_rad) ||
+            !config_.perched_pan.contains(q.pan_rad) || !within_limits(config_.geometry, q)) {
+          code = RejectCode::kOutOfRange;
+        } else if (s != PerchState::kPerched && s != PerchState::kPanTilt) {
+          code = RejectCode::kNotAllowedInState;
+        }
+        break;
+      }
+      case CommandKind::kStow:
+      case CommandKind::kCalibrate: {
+        const bool stow = command.kind == static_cast<std::uint8_t>(CommandKind::kStow);
+        const bool allowed = stow ? (s == PerchState::kDeploying || s == PerchState::kCalibrating ||
+                                     s == PerchState::kFault)
+                                  : (s == PerchState::kStowed || s == PerchState::kFault);
+        if (!allowed) {
+          code = RejectCode::kNotAllowedInState;
+        } else if (holding_handrail()) {
+          code = RejectCode::kHoldingHandrail;
+        }
+        break;
+      }
+      case CommandKind::kAbort:
+        break;
+      case CommandKind::kReconnect:
+        if (s != PerchState::kFault) code = RejectCode::kNotAllowedInState;
+        break;
+    }
+  }
+  status_.last_command = code == RejectCode::kUnknownCommand
+                             ? CommandKind::kNone
+                             : static_cast<CommandKind>(command.kind);
+  status_.last_reject = code;
+  if (code != RejectCode::kAccepted) {
+    ++status_.commands_rejected;
+    return code;
+  }
+  // One slot: a newer command replaces one the sequence has not run yet,
+  // except that an abort is never overwritten.
+  if (!(pending_ && pending_command_.kind == static_cast<std::uint8_t>(CommandKind::kAbort))) {
+    pending_command_ = command;
+  }
+  pending_ = true;
+  return code;
+}
+
+void PerchSequence::step(std::int64_t now_us) {
+  now_us_ = now_us;
+  if (!have_time_) {
+    have_time_ = true;
+    status_.state_entered_us = now_us;
+    enter(PerchState::kInit);
+  }
+  const bool io_ok = read_devices();
+  if (io_ok && status_.state != PerchState::kFault) check_device_faults();
+  if (pending_) {
+    pending_ = false;
+    const PerchCommand command = pending_command_;
+    // The state may have moved since the command was accepted.
+    if (submit(command) == RejectCode::kAccepted) {
+      pending_ = false;
+      run_command(command);
+    }
+  }
+  run_state();
+}
+
+bool PerchSequence::read_devices() {
+  JointReading joints;
+  const IoResult jr = joints_.read(&joints);
+  if (jr.ok()) {
+    status_.joints = joints;
+    status_.joints_valid = true;
+    joint_failures_ = 0;
+  } else {
+    status_.joints_valid = false;
+    if (joint_failures_ < 255) ++joint_failures_;
+  }
+  GripperReading gripper;
+  const IoResult gr = gripper_.read(&gripper);
+  if (gr.ok()) {
+    status_.gripper = gripper;
+    status_.gripper_valid = true;
+    gripper_failures_ = 0;
+  } else {
+    status_.gripper_valid = false;
+    if (gripper_failures_ < 255) ++gripper_failures_;
+  }
+  if (status_.state == PerchState::kFault) return jr.ok() && gr.ok();
+  if (joint_failures_ >= config_.io_failures_to_fault) {
+    fault(fault_for_io(jr), jr, "joint read failed");
+    return false;
+  }
+  if (gripper_failures_ >= config_.io_failures_to_fault) {
+    fault(fault_for_io(gr), gr, "gripper read failed");
+    return false;
+  }
+  return jr.ok() && gr.ok();
+}
+
+bool PerchSequence::check_device_faults() {
+  // INIT clears what a restart leaves behind (latched errors, safe start).
+  if (status_.state == PerchState::kInit) return true;
+  const JointReading& j = status_.joints;
+  if (j.tilt_error_bits & kServoFaultBits) {
+    fault(FaultCode::kServoError, {IoStatus::kDeviceError, Device::kTiltServo, j.tilt_error_bits},
+          "servo reports an error");
+    return false;
+  }
+  if (j.pan_error_bits & kServoFaultBits) {
+    fault(FaultCode::kServoError, {IoStatus::kDeviceError, Device::kPanServo, j.pan_error_bits},
+          "servo reports an error");
+    return false;
+  }
+  const GripperReading& g = status_.gripper;
+  const IoResult gio{IoStatus::kDeviceError, Device::kGripper, g.latched_error};
+  if (g.over_current || (g.latched_error & kGripperOverCurrentBit)) {
+    fault(FaultCode::kGripperOverCurrent, gio, "over the board's current limit");
+    return false;
+  }
+  if (g.latched_error & kGripperTimeoutBit) {
+    fault(FaultCode::kGripperError, gio, "the board's serial timeout expired");
+    return false;
+  }
+  // Safe start outside INIT means the board reset or stopped itself.
+  if (g.safe_start) {
+    fault(FaultCode::kGripperError, gio, "the board is in safe start (reset?)");
+    return false;
+  }
+  return true;
+}
+
+bool PerchSequence::holding_handrail() const {
+  const PerchState s = status_.state;
+  if (s == PerchState::kPerched || s == PerchState::kPanTilt) return true;
+  if (s == PerchState::kFault &&
+      (status_.fault_state == PerchState::kPerched ||
+       status_.fault_state == PerchState::kPanTilt) &&
+      !status_.gripper_valid) {
+    return true;  // cannot see the gripper: assume it still holds
+  }
+  const GripperReading& g = status_.gripper;
+  return status_.gripper_valid && g.calibrated && g.holding &&
+         g.position_counts >= config_.grasp_min_counts &&
+         g.position_counts <= config_.grasp_max_counts;
+}
+
+bool PerchSequence::joints_at(const JointAngles& goal) const {
+  if (!status_.joints_valid) return false;
+  const JointReading& j = status_.joints;
+  return std::fabs(j.q.tilt_rad - goal.tilt_rad) <= config_.joint_tolerance_rad &&
+         std::fabs(j.q.pan_rad - goal.pan_rad) <= config_.joint_tolerance_rad && !j.moving;
+}
+
+bool PerchSequence::require(const IoResult& io, const char* what) {
+  if (io.ok()) return true;
+  fault(fault_for_io(io), io, what);
+  return false;
+}
+
+bool PerchSequence::command_joints(const JointAngles& goal) {
+  status_.joint_goal = goal;
+  return require(joints_.move_to(goal, config_.joint_speed_rad_s), "joint move refused");
+}
+
+void PerchSequence::fault(FaultCode code, const IoResult& io, const char* detail) {
+  if (status_.state == PerchState::kFault) return;  // keep the first cause
+  status_.fault = code;
+  status_.fault_state = status_.state;
+  status_.fault_io = io;
+  if (io.device != Device::kNone) {
+    std::snprintf(status_.fault_text, sizeof(status_.fault_text), "%s in %s: %s (%s, %s, 0x%02x)",
+                  to_string(code), to_string(status_.state), detail, to_string(io.device),
+                  to_string(io.status), io.error_bits);
+  } else {
+    std::snprintf(status_.fault_text, sizeof(status_.fault_text), "%s in %s: %s", to_string(code),
+                  to_string(status_.state), detail);
+  }
+  const bool servo_alarm = is_servo(io.device) && (io.error_bits & kServoAlarmBits) != 0;
+  enter(PerchState::kFault);
+  enter_safe_state(servo_alarm);
+}
+
+void PerchSequence::enter_safe_state(bool servo_alarm) {
+  // Best effort: the devices may be the cause, so failures here are not
+  // faults of their own.
+  if (servo_alarm) {
+    (void)joints_.set_torque(false);  // limp rather than fight an overload
+  } else if (status_.joints_valid) {
+    status_.joint_goal = status_.joints.q;
+    (void)joints_.move_to(status_.joints.q, config_.joint_speed_rad_s);
+  }
+  if (!holding_handrail() && status_.gripper_valid) (void)gripper_.stop();
+}
+
+void PerchSequence::enter(PerchState state) {
+  if (state != PerchState::kFault && status_.state == PerchState::kFault) {
+    status_.fault = FaultCode::kNone;
+    status_.fault_io = IoResult{};
+    status_.fault_text[0] = '\0';
+  }
+  status_.state = state;
+  status_.state_entered_us = now_us_;
+  switch (state) {
+    case PerchState::kInit: {
+      joint_failures_ = gripper_failures_ = 0;
+      // A restart may find a servo in alarm or the board in safe start
+      // with errors latched: clear both before judging the arm's pose.
+      (void)joints_.recover();
+      (void)gripper_.recover();
+      break;
+    }
+    case PerchState::kDeploying:
+      if (!require(joints_.set_torque(true), "torque enable refused")) return;
+      command_joints(config_.geometry.deploy);
+      break;
+    case PerchState::kCalibrating:
+      require(gripper_.calibrate(), "calibrate refused");
+      break;
+    case PerchState::kOpening:
+    case PerchState::kUnperching:
+      require(gripper_.open(config_.open_speed), "open refused");
+      break;
+    case PerchState::kClosing:
+      require(gripper_.close(config_.close_speed, config_.close_current_limit_ma), "close refused");
+      break;
+    case PerchState::kGraspCheck:
+      hold_since_us_ = -1;
+      break;
+    case PerchState::kStowing:
+      if (!require(gripper_.go_to(config_.stow_gripper_counts, config_.stow_speed),
+                   "gripper stow refused")) {
+        return;
+      }
+      if (!require(joints_.set_torque(true), "torque enable refused")) return;
+      command_joints(config_.geometry.stow);
+      break;
+    case PerchState::kStowed:
+    case PerchState::kGripperOpen:
+    case PerchState::kPerched:
+    case PerchState::kPanTilt:
+    case PerchState::kBackingOff:
+    case PerchState::kFault:
+      break;
+  }
+}
+
+void PerchSequence::start_stowing() {
+  // An uncalibrated gripper cannot go to its stow position (in operations
+  // this made stowing fail): calibrate first, then stow.
+  if (status_.gripper_valid && !status_.gripper.calibrated) {
+    after_calibration_ = PerchState::kStowing;
+    enter(PerchState::kCalibrating);
+    return;
+  }
+  enter(PerchState::kStowing);
+}
+
+void PerchSequence::run_command(const PerchCommand& command) {
+  const PerchState s = status_.state;
+  switch (static_cast<CommandKind>(command.kind)) {
+    case CommandKind::kNone:
+      break;
+    case CommandKind::kPerch:
+      status_.grasp_attempts = 0;
+      status_.last_grasp = GraspResult::kNone;
+      enter(PerchState::kDeploying);
+      break;
+    case CommandKind::kUnperch:
+      enter(PerchState::kUnperching);
+      break;
+    case CommandKind::kPanTilt:
+      if (command_joints({command.tilt_rad, command.pan_rad})) enter(PerchState::kPanTilt);
+      break;
+    case CommandKind::kStow:
+      start_stowing();
+      break;
+    case CommandKind::kCalibrate:
+      after_calibration_ = s == PerchState::kStowed ? PerchState::kStowed : PerchState::kInit;
+      enter(PerchState::kCalibrating);
+      break;
+    case CommandKind::kReconnect:
+      enter(PerchState::kInit);
+      break;
+    case CommandKind::kAbort:
+      switch (s) {
+        case PerchState::kDeploying:
+          start_stowing();
+          break;
+        case PerchState::kCalibrating:
+          if (after_calibration_ == PerchState::kOpening) {
+            start_stowing();
+          } else {
+            (void)gripper_.stop();
+            fault(FaultCode::kAborted, {}, "calibration aborted");
+          }
+          break;
+        case PerchState::kOpening:
+        case PerchState::kGripperOpen:
+        case PerchState::kClosing:
+        case PerchState::kGraspCheck:
+          enter(PerchState::kUnperching);
+          break;
+        case PerchState::kPanTilt:
+          if (status_.joints_valid && command_joints(status_.joints.q)) {
+            enter(PerchState::kPerched);
+          }
+          break;
+        case PerchState::kUnperching:
+        case PerchState::kBackingOff:
+        case PerchState::kStowing:
+          fault(FaultCode::kAborted, {}, "stopped by abort");
+          break;
+        case PerchState::kInit:
+        case PerchState::kStowed:
+        case PerchState::kPerched:
+        case PerchState::kFault:
+          break;  // nothing moving
+      }
+      break;
+  }
+}
+
+void PerchSequence::judge_grasp() {
+  const std::int64_t in_state_us = now_us_ - status_.state_entered_us;
+  if (in_state_us < config_.grasp_settle_ms * 1000LL || !status_.gripper_valid) return;
+  const GripperReading& g = status_.gripper;
+  GraspResult result = GraspResult::kNone;
+  if (g.position_counts > config_.grasp_max_counts) {
+    result = GraspResult::kEmpty;
+  } else if (g.position_counts < config_.grasp_min_counts || g.stalled) {
+    result = GraspResult::kWrongPlace;
+  } else if (g.holding && g.current_ma >= config_.grasp_min_current_ma) {
+    result = GraspResult::kInHand;
+  } else if (!g.moving) {
+    result = GraspResult::kNotHolding;
+  }
+  if (result == GraspResult::kNone) return;  // still settling; the timeout bounds it
+  status_.last_grasp = result;
+  if (result == GraspResult::kInHand) {
+    status_.joint_goal = status_.joints.q;
+    enter(PerchState::kPerched);
+    return;
+  }
+  if (status_.grasp_attempts < 255) ++status_.grasp_attempts;
+  if (status_.grasp_attempts >= config_.max_grasp_attempts) {
+    char detail[48];
+    std::snprintf(detail, sizeof(detail), "%u attempts, last %s", status_.grasp_attempts,
+                  to_string(result));
+    fault(FaultCode::kGraspFailed, {}, detail);
+    return;
+  }
+  enter(PerchState::kOpening);  // open and close again once at the target
+}
+
+void PerchSequence::run_state() {
+  const PerchState s = status_.state;
+  const int timeout = timeout_ms(s);
+  if (timeout > 0 && now_us_ - status_.state_entered_us > timeout * 1000LL) {
+    fault(FaultCode::kStateTimeout, {}, "state timed out");
+    return;
+  }
+  const GripperReading& g = status_.gripper;
+  const bool g_ok = status_.gripper_valid;
+  const std::int64_t in_state_us = now_us_ - status_.state_entered_us;
+  switch (s) {
+    case PerchState::kInit:
+      if (!status_.joints_valid || !g_ok) return;  // retried until the timeout
+      if (holding_handrail()) {
+        // Restarted while perched: keep holding, never let go on our own.
+        if (command_joints(status_.joints.q)) enter(PerchState::kPerched);
+      } else if (joints_at(config_.geometry.stow)) {
+        enter(PerchState::kStowed);
+      } else {
+        start_stowing();
+      }
+      return;
+    case PerchState::kDeploying:
+      if (!joints_at(config_.geometry.deploy)) return;
+      if (g_ok && !g.calibrated) {
+        after_calibration_ = PerchState::kOpening;
+        enter(PerchState::kCalibrating);
+      } else if (g_ok) {
+        enter(PerchState::kOpening);
+      }
+      return;
+    case PerchState::kCalibrating:
+      if (g_ok && g.calibrated && !g.moving && in_state_us > 100000) enter(after_calibration_);
+      return;
+    case PerchState::kOpening:
+      if (g_ok && g.position_counts <= config_.open_done_counts && !g.moving) {
+        enter(PerchState::kGripperOpen);
+      }
+      return;
+    case PerchState::kGripperOpen: {
+      const std::int64_t seen = approach_.handrail_seen_us > status_.state_entered_us
+                                    ? approach_.handrail_seen_us
+                                    : status_.state_entered_us;
+      if (now_us_ - seen > config_.handrail_lost_ms * 1000LL) {
+        fault(FaultCode::kHandrailLost, {}, "no handrail estimate during the approach");
+      } else if (approach_.at_target) {
+        enter(PerchState::kClosing);
+      }
+      return;
+    }
+    case PerchState::kClosing:
+      if (!g_ok) return;
+      if (g.holding || g.stalled || (!g.moving && in_state_us > 300000)) {
+        enter(PerchState::kGraspCheck);
+      }
+      return;
+    case PerchState::kGraspCheck:
+      judge_grasp();
+      return;
+    case PerchState::kPerched:
+    case PerchState::kPanTilt:
+      if (g_ok && (!g.holding || g.position_counts < config_.grasp_min_counts ||
+                   g.position_counts > config_.grasp_max_counts)) {
+        fault(FaultCode::kGripLost, {}, "the gripper no longer holds the handrail");
+        return;
+      }
+      if (s == PerchState::kPanTilt && joints_at(status_.joint_goal)) enter(PerchState::kPerched);
+      return;
+    case PerchState::kUnperching:
+      if (g_ok && g.position_counts <= config_.open_done_counts && !g.moving) {
+        enter(PerchState::kBackingOff);
+      }
+      return;
+    case PerchState::kBackingOff:
+      if (approach_.backed_off) start_stowing();
+      return;
+    case PerchState::kStowing: {
+      const bool gripper_stowed = g_ok &&
+                                  std::abs(g.position_counts - config_.stow_gripper_counts) <=
+                                      config_.stow_gripper_tolerance &&
+                                  !g.moving;
+      if (gripper_stowed && joints_at(config_.geometry.stow)) enter(PerchState::kStowed);
+      return;
+    }
+    case PerchState::kStowed:
+    case PerchState::kFault:
+      return;
+  }
+}
+
+}  // namespace arm
