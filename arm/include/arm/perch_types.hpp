@@ -92,7 +92,7 @@ struct ArmStatus {
   FaultCode fault = FaultCode::kNone;
   PerchState fault_state = PerchState::kInit;  // where the fault happened
   IoResult fault_io;                           // the device and its bits, for I/O faults
-  char fault_text[96] = {};                    // one line for people
+  char fault_text[128] = {};                   // one line for people
   CommandKind last_command = CommandKind::kNone;
   RejectCode last_reject = RejectCode::kAccepted;
   std::uint32_t commands_rejected = 0;

@@ -103,6 +103,7 @@ static void execute(gfw_state* s, uint32_t now_ms) {
         s->speed = s->data[0];
         s->mode = GFW_MODE_OPENING;
         s->stalled = 0;
+        s->stall_since_ms = 0;
       }
       break;
     case GFW_CMD_CLOSE: {
@@ -234,7 +235,18 @@ void gfw_tick(gfw_state* s, int32_t raw_encoder, uint16_t current_ma, uint32_t n
       s->pwm = 0;
       break;
     case GFW_MODE_OPENING:
+      /* Open until the fingers rest on the open stop, then let the motor
+       * go: pushing on at a stall would heat it for nothing. */
       s->pwm = clamp_pwm(-drive);
+      if (still) {
+        if (s->stall_since_ms == 0) s->stall_since_ms = now_ms;
+        if (now_ms - s->stall_since_ms >= GFW_OPEN_REST_MS) {
+          s->mode = GFW_MODE_IDLE;
+          s->pwm = 0;
+        }
+      } else {
+        s->stall_since_ms = 0;
+      }
       break;
     case GFW_MODE_CALIBRATING:
       /* Slowly to the open stop; there, still for 200 ms: zero. */

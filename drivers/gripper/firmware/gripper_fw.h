@@ -53,6 +53,7 @@ enum {
 #define GFW_ABS_CURRENT_LIMIT_MA 2500
 #define GFW_DEFAULT_TIMEOUT_MS 500
 #define GFW_PWM_SLEW_PER_MS 4 /* full reversal in about 130 ms */
+#define GFW_OPEN_REST_MS 250  /* still this long while opening: on the open stop */
 
 uint8_t gfw_crc7(const uint8_t* bytes, uint8_t n);
 
