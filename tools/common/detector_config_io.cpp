@@ -109,8 +109,13 @@ bool parse_detector_config(const std::string& text, const std::string& path,
     *error = path + ":" + json_error.substr(5);
     return false;
   }
+  return read_detector_config(root, path, cfg, error);
+}
+
+bool read_detector_config(const hal::JsonValue& root, const std::string& path,
+                          estimator::DetectorConfig* cfg, std::string* error) {
   if (!root.is_object()) {
-    *error = at(path, root) + "the configuration must be a JSON object";
+    *error = at(path, root) + "the detector configuration must be a JSON object";
     return false;
   }
   estimator::DetectorConfig c = *cfg;

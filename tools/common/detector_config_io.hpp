@@ -6,6 +6,7 @@
 #include <string>
 
 #include "estimator/config.hpp"
+#include "hal/json.hpp"
 
 namespace tools {
 
@@ -13,5 +14,8 @@ bool load_detector_config(const std::string& path, estimator::DetectorConfig* cf
                           std::string* error);
 bool parse_detector_config(const std::string& text, const std::string& path,
                            estimator::DetectorConfig* cfg, std::string* error);
+// The same from an already parsed object (a section of a larger file).
+bool read_detector_config(const hal::JsonValue& object, const std::string& path,
+                          estimator::DetectorConfig* cfg, std::string* error);
 
 }  // namespace tools

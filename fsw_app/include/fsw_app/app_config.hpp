@@ -1,0 +1,60 @@
+#pragma once
+// fsw_app's one configuration file (JSON): LCM URL, camera use case and
+// extrinsics, estimator thresholds, arm geometry, perch sequence, ports and
+// rates, and the approach. Every key is optional (defaults below and in
+// fsw_app/config/fsw_app.json); an unknown key, a wrong type or a value out
+// of range stops start-up with "FILE:LINE: key: what is wrong".
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+
+#include "arm/perch_config.hpp"
+#include "arm_io/ax12_joints.hpp"
+#include "estimator/config.hpp"
+
+namespace fsw_app {
+
+struct PortsConfig {
+  std::string servo_port = "/dev/ttyUSB0";
+  std::uint32_t servo_baud = 1000000;
+  std::uint32_t servo_return_delay_us = 500;
+  std::uint32_t servo_margin_us = 3000;
+  std::string gripper_port = "/dev/ttyO1";
+  std::uint32_t gripper_baud = 115200;
+  std::uint32_t gripper_margin_us = 5000;
+};
+
+struct ApproachConfig {
+  double standoff_m = 0.20;     // first to this distance out from the grasp pose
+  double max_speed_mps = 0.10;  // the flyer's approach speed limit
+  double max_rate_rps = 0.25;
+  double gain_per_s = 0.8;  // velocity = gain * error, then limited
+  double position_tolerance_m = 0.008;
+  double angle_tolerance_rad = 0.05;
+  double back_off_m = 0.25;  // after letting go
+  int settle_cycles = 5;     // within tolerance this many cycles: at target
+};
+
+struct AppConfig {
+  std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";
+  std::string use_case = "MODE_9_5FPS_2000";
+  // The camera in the body frame. Default: on the aft face beside the arm,
+  // looking aft; image y is body -z, so a handrail along body z runs along
+  // the image's y axis (gripper angle 0).
+  Eigen::Isometry3d T_body_cam = default_T_body_cam();
+  estimator::DetectorConfig estimator;
+  arm::PerchConfig perch;  // includes the arm geometry
+  arm_io::JointServoConfig servos;
+  PortsConfig ports;
+  ApproachConfig approach;
+  double arm_rate_hz = 20.0;
+  double manager_rate_hz = 20.0;
+
+  static Eigen::Isometry3d default_T_body_cam();
+};
+
+bool load_app_config(const std::string& path, AppConfig* config, std::string* error);
+bool parse_app_config(const std::string& text, const std::string& path, AppConfig* config,
+                      std::string* error);
+
+}  // namespace fsw_app

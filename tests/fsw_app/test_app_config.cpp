@@ -1,0 +1,89 @@
+// fsw_app's configuration file: the shipped file loads, and every kind of
+// mistake stops start-up with the file, the line and the key.
+#include <cstdlib>
+#include <string>
+
+#include "cmocka_cpp.hpp"
+#include "fsw_app/app_config.hpp"
+
+namespace {
+
+std::string source_dir() {
+  const char* d = std::getenv("HRP_SOURCE_DIR");
+  return d ? d : ".";
+}
+
+void test_shipped_configuration_loads(void**) {
+  fsw_app::AppConfig c;
+  std::string error;
+  const bool ok =
+      fsw_app::load_app_config(source_dir() + "/fsw_app/config/fsw_app.json", &c, &error);
+  if (!ok) print_error("%s\n", error.c_str());
+  assert_true(ok);
+  assert_string_equal(c.use_case.c_str(), "MODE_9_5FPS_2000");
+  assert_near(c.perch.geometry.distal_link_m, 0.14, 1e-12);
+  assert_near(c.perch.geometry.stow.tilt_rad, M_PI / 2, 1e-12);
+  assert_int_equal(c.perch.timeouts.gripper_open, 90000);
+  assert_int_equal(c.ports.servo_baud, 1000000);
+  // The default mount looks aft: the camera's z is the body's -x.
+  assert_near(c.T_body_cam.linear().col(2).x(), -1.0, 1e-12);
+}
+
+// Parses `text`; expects failure with every fragment in the message.
+void expect_error(const char* text, std::initializer_list<const char*> fragments) {
+  fsw_app::AppConfig c;
+  std::string error;
+  assert_false(fsw_app::parse_app_config(text, "cfg.json", &c, &error));
+  for (const char* f : fragments) {
+    if (error.find(f) == std::string::npos) {
+      print_error("\"%s\" not in \"%s\"\n", f, error.c_str());
+      fail();
+    }
+  }
+}
+
+void test_mistakes_name_file_line_and_key(void**) {
+  expect_error("{\n \"lcm_urll\": \"memq://\"\n}", {"cfg.json:2:", "lcm_urll", "unknown key"});
+  expect_error("{\"use_case\": \"MODE_FAST\"}", {"use_case", "not a Pico Flexx use case"});
+  expect_error("{\"perch\": {\n\"joint_speed_rad_s\": 9}}",
+               {"cfg.json:2:", "perch.joint_speed_rad_s", "within"});
+  expect_error("{\"perch\": {\"timeouts_ms\": {\"closing\": \"long\"}}}",
+               {"perch.timeouts_ms.closing", "must be a number"});
+  expect_error("{\"perch\": {\"timeouts_ms\": {\"stuck\": 5}}}",
+               {"perch.timeouts_ms.stuck", "unknown key"});
+  expect_error("{\"arm\": {\"stow_deg\": [150, 0]}}", {"arm.stow_deg", "outside the joint limits"});
+  expect_error("{\"arm\": {\"tilt_limits_deg\": [10, -10]}}", {"arm.tilt_limits_deg", "below"});
+  expect_error("{\"arm\": {\"base_m\": [0, 0]}}", {"arm.base_m", "array of 3"});
+  expect_error("{\"servos\": {\"tilt_id\": 2, \"pan_id\": 2}}", {"servos.pan_id", "different"});
+  expect_error("{\"ports\": {\"servo_baud\": 1.5e7}}", {"ports.servo_baud"});
+  expect_error("{\"perch\": {\"max_grasp_attempts\": 2.5}}", {"perch.max_grasp_attempts", "whole"});
+  expect_error("{\"estimator\": {\"plane_iterations\": -1}}", {"cfg.json:1:", "plane_iterations"});
+  expect_error("{\"camera\": 3}", {"camera", "must be an object"});
+  expect_error("[1, 2]", {"must be a JSON object"});
+  expect_error("{\"lcm_url\": ", {"cfg.json:"});
+  fsw_app::AppConfig c;
+  std::string error;
+  assert_false(fsw_app::load_app_config("/nonexistent/fsw.json", &c, &error));
+  assert_non_null(std::strstr(error.c_str(), "/nonexistent/fsw.json: cannot open"));
+}
+
+void test_a_failed_load_changes_nothing(void**) {
+  fsw_app::AppConfig c;
+  c.arm_rate_hz = 33.0;
+  std::string error;
+  assert_false(fsw_app::parse_app_config("{\"arm_rate_hz\": 50, \"bogus\": 1}", "x", &c, &error));
+  assert_near(c.arm_rate_hz, 33.0, 0.0);
+  assert_true(fsw_app::parse_app_config("{\"arm_rate_hz\": 50}", "x", &c, &error));
+  assert_near(c.arm_rate_hz, 50.0, 0.0);
+}
+
+}  // namespace
+
+int main() {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_shipped_configuration_loads),
+      cmocka_unit_test(test_mistakes_name_file_line_and_key),
+      cmocka_unit_test(test_a_failed_load_changes_nothing),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
