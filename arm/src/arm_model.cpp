@@ -45,6 +45,22 @@ Eigen::Isometry3d forward_kinematics(const ArmGeometry& g, const JointAngles& q)
   return T;
 }
 
+Eigen::Isometry3d grasp_body_target(const ArmGeometry& g, const Eigen::Isometry3d& T_ref_handrail,
+                                    const Eigen::Vector3d& up_ref) {
+  const Eigen::Vector3d normal = T_ref_handrail.linear().col(0);
+  Eigen::Vector3d along = T_ref_handrail.linear().col(2);
+  // In the grip posture the grasp frame's z is the body's z.
+  if (along.dot(up_ref) < 0.0) along = -along;
+  Eigen::Matrix3d R;
+  R.col(0) = -normal;
+  R.col(2) = along;
+  R.col(1) = along.cross(-normal);
+  Eigen::Isometry3d T_ref_grasp = Eigen::Isometry3d::Identity();
+  T_ref_grasp.linear() = R;
+  T_ref_grasp.translation() = T_ref_handrail.translation();
+  return T_ref_grasp * forward_kinematics(g, g.grip).inverse();
+}
+
 bool pointing_angles(const ArmGeometry& g, const Eigen::Vector3d& forward_in_grasp,
                      const JointAngles& current, JointAngles* q) {
   const double n = forward_in_grasp.norm();

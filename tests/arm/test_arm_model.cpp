@@ -77,6 +77,27 @@ void test_pointing_refuses_unreachable_directions(void**) {
   assert_near(q.pan_rad, before.pan_rad, 0.0);
 }
 
+void test_grasp_target_puts_the_grasp_point_on_the_bar(void**) {
+  const arm::ArmGeometry g;
+  // A vertical bar 6 cm off a wall whose normal is world +y, seen with the
+  // robot upright (world z up).
+  Eigen::Isometry3d T_world_handrail = Eigen::Isometry3d::Identity();
+  T_world_handrail.linear().col(0) = Eigen::Vector3d(0, 1, 0);   // normal
+  T_world_handrail.linear().col(2) = Eigen::Vector3d(0, 0, -1);  // bar, pointing down
+  T_world_handrail.linear().col(1) =
+      T_world_handrail.linear().col(2).cross(T_world_handrail.linear().col(0));
+  T_world_handrail.translation() = Eigen::Vector3d(1.0, 2.0, 0.5);
+  const Eigen::Isometry3d T_world_body =
+      arm::grasp_body_target(g, T_world_handrail, Eigen::Vector3d::UnitZ());
+  const Eigen::Isometry3d T_world_grasp = T_world_body * arm::forward_kinematics(g, g.grip);
+  assert_true((T_world_grasp.translation() - T_world_handrail.translation()).norm() < 1e-12);
+  // The link points into the wall, the body stays upright (the bar's sign
+  // was flipped to match), and the body is out from the wall by the reach.
+  assert_true((T_world_grasp.linear().col(0) - Eigen::Vector3d(0, -1, 0)).norm() < 1e-12);
+  assert_true((T_world_body.linear().col(2) - Eigen::Vector3d::UnitZ()).norm() < 1e-12);
+  assert_near(T_world_body.translation().y() - 2.0, -g.p_body_base.x() + 0.24, 1e-12);
+}
+
 }  // namespace
 
 int main() {
@@ -86,6 +107,7 @@ int main() {
       cmocka_unit_test(test_limits_and_postures),
       cmocka_unit_test(test_pointing_inverts_forward_kinematics),
       cmocka_unit_test(test_pointing_refuses_unreachable_directions),
+      cmocka_unit_test(test_grasp_target_puts_the_grasp_point_on_the_bar),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

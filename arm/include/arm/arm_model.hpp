@@ -44,6 +44,15 @@ bool within_limits(const ArmGeometry& g, const JointAngles& q);
 // x along the distal link (outward), z along the pan axis.
 Eigen::Isometry3d forward_kinematics(const ArmGeometry& g, const JointAngles& q);
 
+// Where the body must be for the gripper, in the grip posture, to hold a
+// handrail: the grasp point on the bar's centre line, the link along the
+// wall normal into the wall, the fingers closing across the bar. The
+// handrail frame is the estimator's (x = wall normal toward the robot, z
+// along the bar), given in any reference frame; of the two ways round the
+// bar, the one whose body z is nearer `up_ref` (the robot's present up).
+Eigen::Isometry3d grasp_body_target(const ArmGeometry& g, const Eigen::Isometry3d& T_ref_handrail,
+                                    const Eigen::Vector3d& up_ref);
+
 // Perched, the gripper is fixed to the handrail and the joints turn the
 // body about it. Given the direction in which the body's x axis (its
 // forward cameras) should point, expressed in the grasp frame, finds the

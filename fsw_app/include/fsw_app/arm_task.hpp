@@ -1,0 +1,53 @@
+#pragma once
+// The arm task: runs the perch sequence at its rate over the actuator
+// interfaces, takes PERCH_COMMAND (validated on receipt; a rejection shows
+// in ARM_STATE) and APPROACH_STATUS, and publishes ARM_STATE every cycle.
+// It owns no port: the caller builds the drivers (real ports or the
+// simulated devices' ptys) and hands over the interfaces.
+#include <atomic>
+#include <cstdint>
+#include <thread>
+
+#include "arm/perch_sequence.hpp"
+#include "fsw_app/lcm_hub.hpp"
+#include "hal/clock.hpp"
+#include "hrp/approach_status_t.hpp"
+#include "hrp/arm_state_t.hpp"
+#include "hrp/perch_command_t.hpp"
+
+namespace fsw_app {
+
+class ArmTask {
+ public:
+  ArmTask(LcmHub& hub, arm::JointActuators& joints, arm::GripperActuator& gripper,
+          const arm::PerchConfig& config, const hal::Clock& clock, double rate_hz);
+  ~ArmTask();
+
+  void start();
+  void stop();
+  // One cycle: new command, approach, sequence step, ARM_STATE.
+  void cycle();
+
+  const arm::PerchSequence& sequence() const { return sequence_; }
+  const hrp::arm_state_t& last_state() const { return state_; }
+
+ private:
+  void fill_state();
+
+  LcmHub& hub_;
+  const hal::Clock& clock_;
+  arm::PerchSequence sequence_;
+  std::int64_t period_us_;
+  Mailbox<hrp::perch_command_t> command_box_;
+  Mailbox<hrp::approach_status_t> approach_box_;
+  Publisher<hrp::arm_state_t> state_pub_;
+  hrp::perch_command_t command_{};
+  hrp::approach_status_t approach_{};
+  hrp::arm_state_t state_{};
+  std::uint64_t command_seen_ = 0;
+  std::int32_t last_sequence_ = 0;
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+};
+
+}  // namespace fsw_app

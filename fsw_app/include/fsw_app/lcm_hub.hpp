@@ -1,0 +1,129 @@
+#pragma once
+// One LCM instance shared by the process's tasks. memq:// (the unit tests)
+// delivers only within one instance, and udpm wants one socket per process,
+// so the tasks share this hub: one dispatcher thread decodes each message
+// into its mailbox (the newest value per channel), and any task publishes.
+// Publishing encodes into the publisher's buffer, sized once: no
+// allocation per message on our side.
+#include <lcm/lcm-cpp.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fsw_app {
+
+// The newest message on a channel, with a count so a reader can tell a new
+// one from the one it already has.
+template <typename Msg>
+class Mailbox {
+ public:
+  // Copies the newest message out; returns its sequence number (0: none yet).
+  std::uint64_t read(Msg* out) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (sequence_ != 0) *out = msg_;
+    return sequence_;
+  }
+  std::uint64_t sequence() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return sequence_;
+  }
+  std::uint64_t decode_errors() const { return decode_errors_.load(); }
+
+  // Dispatcher side.
+  void deliver(const void* data, std::uint32_t size) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (msg_.decode(data, 0, static_cast<int>(size)) < 0) {
+      ++decode_errors_;
+      return;
+    }
+    ++sequence_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  Msg msg_;
+  std::uint64_t sequence_ = 0;
+  std::atomic<std::uint64_t> decode_errors_{0};
+};
+
+class LcmHub {
+ public:
+  explicit LcmHub(const std::string& url);
+  ~LcmHub();
+  bool good() const { return lcm_.good(); }
+  const std::string& url() const { return url_; }
+
+  template <typename Msg>
+  void subscribe(const std::string& channel, Mailbox<Msg>* box) {
+    lcm_.subscribeFunction(
+        channel,
+        +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Mailbox<Msg>* b) {
+          b->deliver(rbuf->data, rbuf->data_size);
+        },
+        box);
+  }
+
+  // Publishes already-encoded bytes; thread safe.
+  bool publish_raw(const std::string& channel, const std::uint8_t* data, std::size_t size);
+
+  // Every message on every channel to `sink` (the run's log). Once.
+  using RawSink = void (*)(void* user, const std::string& channel, const lcm::ReceiveBuffer& rbuf);
+  void subscribe_all(RawSink sink, void* user);
+
+  // Runs the dispatcher on a thread of its own until stop().
+  void start();
+  void stop();
+  // Or dispatches on the caller's thread, waiting up to timeout_ms.
+  int handle(int timeout_ms) { return lcm_.handleTimeout(timeout_ms); }
+  lcm::LCM& lcm() { return lcm_; }
+
+ private:
+  std::string url_;
+  lcm::LCM lcm_;
+  std::mutex publish_mutex_;
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+  RawSink sink_ = nullptr;
+  void* sink_user_ = nullptr;
+};
+
+// Encodes one message type into a buffer sized at construction.
+template <typename Msg>
+class Publisher {
+ public:
+  Publisher(LcmHub& hub, std::string channel, std::size_t capacity = 4096)
+      : hub_(hub), channel_(std::move(channel)), buffer_(capacity) {}
+  bool publish(const Msg& msg) {
+    const int n = msg.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
+    if (n < 0) {
+      ++failures_;
+      return false;
+    }
+    return hub_.publish_raw(channel_, buffer_.data(), static_cast<std::size_t>(n));
+  }
+  std::uint64_t failures() const { return failures_; }
+
+ private:
+  LcmHub& hub_;
+  std::string channel_;
+  std::vector<std::uint8_t> buffer_;
+  std::uint64_t failures_ = 0;
+};
+
+// Channel names.
+namespace channel {
+inline constexpr const char* kHandrailEstimate = "HANDRAIL_ESTIMATE";
+inline constexpr const char* kPerchCommand = "PERCH_COMMAND";
+inline constexpr const char* kApproachStatus = "APPROACH_STATUS";
+inline constexpr const char* kArmState = "ARM_STATE";
+inline constexpr const char* kEstimatorHealth = "ESTIMATOR_HEALTH";
+inline constexpr const char* kRobotPose = "ROBOT_POSE";
+inline constexpr const char* kBodyVelocityCommand = "BODY_VELOCITY_COMMAND";
+}  // namespace channel
+
+}  // namespace fsw_app

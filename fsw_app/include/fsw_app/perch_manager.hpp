@@ -1,0 +1,90 @@
+#pragma once
+// The perch manager: visual servoing toward the estimator's target pose,
+// in step with the arm's perch sequence, and the approach status the arm
+// waits on.
+//   arm DEPLOYING .. OPENING: fly to a stand-off pose out from the target
+//     along the wall normal;
+//   GRIPPER_OPEN: close in, moving toward the wall only as fast as the
+//     robot is lined up across it; "at target" once within tolerance for a
+//     few cycles;
+//   CLOSING .. PERCHED, FAULT and the rest: hold;
+//   BACKING_OFF: straight out along the wall normal, "backed off" once clear.
+// ApproachController is the logic (pure, time injected); PerchManager wires
+// it to LCM on a thread.
+#include <Eigen/Geometry>
+#include <atomic>
+#include <cstdint>
+#include <thread>
+
+#include "fsw_app/app_config.hpp"
+#include "fsw_app/lcm_hub.hpp"
+#include "hal/clock.hpp"
+#include "hrp/approach_status_t.hpp"
+#include "hrp/arm_state_t.hpp"
+#include "hrp/body_velocity_command_t.hpp"
+#include "hrp/handrail_estimate_t.hpp"
+#include "hrp/robot_pose_t.hpp"
+
+namespace fsw_app {
+
+struct ApproachOutput {
+  hrp::body_velocity_command_t velocity{};
+  hrp::approach_status_t status{};
+};
+
+class ApproachController {
+ public:
+  explicit ApproachController(const ApproachConfig& cfg) : cfg_(cfg) {}
+
+  // A new estimate (call once per estimate).
+  void on_estimate(const hrp::handrail_estimate_t& estimate);
+  // One control cycle.
+  ApproachOutput step(std::int64_t now_us, const hrp::robot_pose_t* pose, std::int8_t arm_state);
+
+  bool has_target() const { return have_target_; }
+  const Eigen::Isometry3d& target() const { return T_world_target_; }
+  const Eigen::Isometry3d& handrail() const { return T_world_handrail_; }
+
+ private:
+  // Velocity toward `goal`, limited.
+  void servo_to(const Eigen::Isometry3d& T_world_body, const Eigen::Isometry3d& goal,
+                ApproachOutput* out) const;
+
+  ApproachConfig cfg_;
+  bool have_target_ = false;
+  Eigen::Isometry3d T_world_target_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d T_world_handrail_ = Eigen::Isometry3d::Identity();
+  std::int64_t handrail_seen_us_ = -1;
+  int settled_ = 0;
+  bool backing_off_ = false;
+  double back_off_start_m_ = 0.0;  // distance out from the bar when the back-off began
+};
+
+class PerchManager {
+ public:
+  PerchManager(LcmHub& hub, const ApproachConfig& cfg, const hal::Clock& clock, double rate_hz);
+  ~PerchManager();
+  void start();
+  void stop();
+  void cycle();
+  const ApproachController& controller() const { return controller_; }
+
+ private:
+  LcmHub& hub_;
+  const hal::Clock& clock_;
+  ApproachController controller_;
+  std::int64_t period_us_;
+  Mailbox<hrp::handrail_estimate_t> estimate_box_;
+  Mailbox<hrp::robot_pose_t> pose_box_;
+  Mailbox<hrp::arm_state_t> arm_box_;
+  Publisher<hrp::body_velocity_command_t> velocity_pub_;
+  Publisher<hrp::approach_status_t> status_pub_;
+  hrp::handrail_estimate_t estimate_{};
+  hrp::robot_pose_t pose_{};
+  hrp::arm_state_t arm_{};
+  std::uint64_t estimate_seen_ = 0;
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+};
+
+}  // namespace fsw_app

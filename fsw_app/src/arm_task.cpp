@@ -1,0 +1,101 @@
+#include "fsw_app/arm_task.hpp"
+
+#include <chrono>
+
+namespace fsw_app {
+
+ArmTask::ArmTask(LcmHub& hub, arm::JointActuators& joints, arm::GripperActuator& gripper,
+                 const arm::PerchConfig& config, const hal::Clock& clock, double rate_hz)
+    : hub_(hub),
+      clock_(clock),
+      sequence_(joints, gripper, config),
+      period_us_(static_cast<std::int64_t>(1e6 / rate_hz)),
+      state_pub_(hub, channel::kArmState) {
+  hub_.subscribe(channel::kPerchCommand, &command_box_);
+  hub_.subscribe(channel::kApproachStatus, &approach_box_);
+  // The strings get their room now, so that filling them later does not
+  // allocate.
+  state_.state_name.reserve(32);
+  state_.fault_name.reserve(32);
+  state_.fault_text.reserve(160);
+  state_.last_reject_name.reserve(32);
+}
+
+ArmTask::~ArmTask() {
+  stop();
+}
+
+void ArmTask::start() {
+  if (running_.exchange(true)) return;
+  thread_ = std::thread([this] {
+    auto next = std::chrono::steady_clock::now();
+    while (running_.load()) {
+      cycle();
+      next += std::chrono::microseconds(period_us_);
+      const auto now = std::chrono::steady_clock::now();
+      if (next < now) next = now;  // overran: no burst of catch-up cycles
+      std::this_thread::sleep_until(next);
+    }
+  });
+}
+
+void ArmTask::stop() {
+  if (!running_.exchange(false)) return;
+  if (thread_.joinable()) thread_.join();
+}
+
+void ArmTask::cycle() {
+  const std::uint64_t seq = command_box_.read(&command_);
+  if (seq != command_seen_) {
+    command_seen_ = seq;
+    last_sequence_ = command_.sequence;
+    sequence_.submit(
+        {static_cast<std::uint8_t>(command_.command), command_.tilt_rad, command_.pan_rad});
+  }
+  arm::ApproachInput in;
+  if (approach_box_.read(&approach_) != 0) {
+    in.handrail_seen_us = approach_.handrail_seen_utime;
+    in.at_target = approach_.at_target;
+    in.backed_off = approach_.backed_off;
+  }
+  sequence_.set_approach(in);
+  sequence_.step(clock_.now_us());
+  fill_state();
+  state_pub_.publish(state_);
+}
+
+void ArmTask::fill_state() {
+  const arm::ArmStatus& s = sequence_.status();
+  hrp::arm_state_t& m = state_;
+  m.utime = clock_.now_us();
+  m.state = static_cast<std::int8_t>(s.state);
+  m.state_name = arm::to_string(s.state);
+  m.state_entered_utime = s.state_entered_us;
+  m.fault_code = static_cast<std::int8_t>(s.fault);
+  m.fault_name = arm::to_string(s.fault);
+  m.fault_state = static_cast<std::int8_t>(s.fault_state);
+  m.fault_text = s.fault_text;
+  m.last_command_sequence = last_sequence_;
+  m.last_command = static_cast<std::int8_t>(s.last_command);
+  m.last_reject = static_cast<std::int8_t>(s.last_reject);
+  m.last_reject_name = arm::to_string(s.last_reject);
+  m.commands_rejected = static_cast<std::int32_t>(s.commands_rejected);
+  m.tilt_rad = s.joints.q.tilt_rad;
+  m.pan_rad = s.joints.q.pan_rad;
+  m.tilt_goal_rad = s.joint_goal.tilt_rad;
+  m.pan_goal_rad = s.joint_goal.pan_rad;
+  m.joints_moving = s.joints.moving;
+  m.joints_valid = s.joints_valid;
+  m.tilt_error_bits = static_cast<std::int8_t>(s.joints.tilt_error_bits);
+  m.pan_error_bits = static_cast<std::int8_t>(s.joints.pan_error_bits);
+  m.gripper_position_counts = s.gripper.position_counts;
+  m.gripper_current_ma = s.gripper.current_ma;
+  m.gripper_calibrated = s.gripper.calibrated;
+  m.gripper_holding = s.gripper.holding;
+  m.gripper_valid = s.gripper_valid;
+  m.gripper_error_bits = static_cast<std::int8_t>(s.gripper.latched_error);
+  m.grasp_attempts = static_cast<std::int8_t>(s.grasp_attempts);
+  m.last_grasp = static_cast<std::int8_t>(s.last_grasp);
+}
+
+}  // namespace fsw_app

@@ -1,0 +1,40 @@
+#include "fsw_app/lcm_hub.hpp"
+
+namespace fsw_app {
+
+LcmHub::LcmHub(const std::string& url) : url_(url), lcm_(url) {}
+
+LcmHub::~LcmHub() {
+  stop();
+}
+
+bool LcmHub::publish_raw(const std::string& channel, const std::uint8_t* data, std::size_t size) {
+  // LCM's publish is not documented as thread safe for every provider.
+  std::lock_guard<std::mutex> lock(publish_mutex_);
+  return lcm_.publish(channel, data, static_cast<unsigned int>(size)) == 0;
+}
+
+void LcmHub::subscribe_all(RawSink sink, void* user) {
+  sink_ = sink;
+  sink_user_ = user;
+  lcm_.subscribeFunction(
+      ".*",
+      +[](const lcm::ReceiveBuffer* rbuf, const std::string& channel, LcmHub* hub) {
+        hub->sink_(hub->sink_user_, channel, *rbuf);
+      },
+      this);
+}
+
+void LcmHub::start() {
+  if (running_.exchange(true)) return;
+  thread_ = std::thread([this] {
+    while (running_.load()) lcm_.handleTimeout(50);
+  });
+}
+
+void LcmHub::stop() {
+  if (!running_.exchange(false)) return;
+  if (thread_.joinable()) thread_.join();
+}
+
+}  // namespace fsw_app
