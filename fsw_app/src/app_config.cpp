@@ -311,7 +311,8 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
   if (const JsonValue* v = top.object("approach")) {
     Section s(*v, "approach", path, error);
     if (!s.only({"standoff_m", "max_speed_mps", "max_rate_rps", "gain_per_s",
-                 "position_tolerance_m", "angle_tolerance_deg", "back_off_m", "settle_cycles"})) {
+                 "integral_gain_per_s2", "brake_mps2", "settle_speed_mps", "position_tolerance_m",
+                 "angle_tolerance_deg", "back_off_m", "settle_cycles"})) {
       return false;
     }
     ApproachConfig& a = c.approach;
@@ -319,6 +320,9 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     s.number("max_speed_mps", &a.max_speed_mps, 0.005, 0.5);
     s.number("max_rate_rps", &a.max_rate_rps, 0.01, 2.0);
     s.number("gain_per_s", &a.gain_per_s, 0.05, 10.0);
+    s.number("integral_gain_per_s2", &a.integral_gain_per_s2, 0.0, 10.0);
+    s.number("brake_mps2", &a.brake_mps2, 0.001, 1.0);
+    s.number("settle_speed_mps", &a.settle_speed_mps, 0.0005, 0.1);
     s.number("position_tolerance_m", &a.position_tolerance_m, 0.001, 0.1);
     double deg = a.angle_tolerance_rad / kDeg;
     s.number("angle_tolerance_deg", &deg, 0.1, 30.0);

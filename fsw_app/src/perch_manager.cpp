@@ -17,12 +17,38 @@ void ApproachController::on_estimate(const hrp::handrail_estimate_t& e) {
 }
 
 void ApproachController::servo_to(const Eigen::Isometry3d& T_world_body,
-                                  const Eigen::Isometry3d& goal, ApproachOutput* out) const {
-  Eigen::Vector3d v = cfg_.gain_per_s * (goal.translation() - T_world_body.translation());
-  if (v.norm() > cfg_.max_speed_mps) v *= cfg_.max_speed_mps / v.norm();
+                                  const Eigen::Isometry3d& goal, ApproachOutput* out, double dt_s,
+                                  const Eigen::Vector3d* approach_axis) {
+  // The point that must meet the bar is the grasp point, not the body's
+  // origin 0.4 m away: servo it, and turn the body about it.
+  const Eigen::Vector3d e = goal * p_body_grasp_ - T_world_body * p_body_grasp_;
+  // Integral action takes out slow pushes (air flow); only near the goal,
+  // and bounded, so that a long transit does not wind it up.
+  if (e.norm() < 0.05) {
+    integral_ += e * dt_s;
+    const double cap = 0.5 * cfg_.max_speed_mps / std::max(cfg_.integral_gain_per_s2, 1e-6);
+    if (integral_.norm() > cap) integral_ *= cap / integral_.norm();
+  } else {
+    integral_.setZero();
+  }
+  Eigen::Vector3d v = cfg_.gain_per_s * e + cfg_.integral_gain_per_s2 * integral_;
+  if (approach_axis) {
+    // Toward the wall only as fast as the robot is lined up across it.
+    const Eigen::Vector3d lateral = e - approach_axis->dot(e) * *approach_axis;
+    const double lined_up = std::clamp(1.0 - lateral.norm() / 0.03, 0.0, 1.0);
+    const double in = approach_axis->dot(v);
+    if (in > 0.0) v -= (1.0 - lined_up) * in * *approach_axis;
+  }
+  // No faster than the robot can stop in the distance left, braking
+  // gently: overshooting toward the wall with the gripper open is the
+  // failure that matters.
+  const double v_max = std::min(cfg_.max_speed_mps, std::sqrt(2.0 * cfg_.brake_mps2 * e.norm()));
+  if (v.norm() > v_max) v *= v_max / v.norm();
   const Eigen::AngleAxisd err(goal.linear() * T_world_body.linear().transpose());
   Eigen::Vector3d w = cfg_.gain_per_s * err.angle() * err.axis();
   if (w.norm() > cfg_.max_rate_rps) w *= cfg_.max_rate_rps / w.norm();
+  // The body's origin moves so that the grasp point moves at v.
+  v -= w.cross(T_world_body.linear() * p_body_grasp_);
   for (int k = 0; k < 3; ++k) {
     out->velocity.velocity_mps[k] = v[k];
     out->velocity.angular_velocity_rps[k] = w[k];
@@ -34,19 +60,23 @@ ApproachOutput ApproachController::step(std::int64_t now_us, const hrp::robot_po
                                         std::int8_t arm_state) {
   using A = hrp::arm_state_t;
   ApproachOutput out;
+  const double dt_s =
+      last_step_us_ > 0 ? std::min(0.2, 1e-6 * static_cast<double>(now_us - last_step_us_)) : 0.0;
+  last_step_us_ = now_us;
   out.velocity.utime = out.status.utime = now_us;
   out.velocity.hold = true;
   out.status.handrail_seen_utime = handrail_seen_us_;
   if (!pose || !have_target_) {
     settled_ = 0;
+    integral_.setZero();
     return out;
   }
   const Eigen::Isometry3d T_world_body = from_msg(pose->T_world_body);
   const Eigen::Vector3d normal = T_world_handrail_.linear().col(0);
-  const Eigen::Vector3d to_target = T_world_target_.translation() - T_world_body.translation();
   const double angle =
       Eigen::AngleAxisd(T_world_target_.linear() * T_world_body.linear().transpose()).angle();
-  out.status.position_error_m = to_target.norm();
+  out.status.position_error_m =
+      (T_world_target_ * p_body_grasp_ - T_world_body * p_body_grasp_).norm();
   out.status.angle_error_rad = angle;
   // How far out from the bar the body is, along the wall normal.
   const double out_m = normal.dot(T_world_body.translation() - T_world_handrail_.translation());
@@ -54,20 +84,23 @@ ApproachOutput ApproachController::step(std::int64_t now_us, const hrp::robot_po
   if (arm_state == A::DEPLOYING || arm_state == A::CALIBRATING || arm_state == A::OPENING) {
     Eigen::Isometry3d goal = T_world_target_;
     goal.translation() += cfg_.standoff_m * normal;
-    servo_to(T_world_body, goal, &out);
+    servo_to(T_world_body, goal, &out, dt_s, nullptr);
   } else if (arm_state == A::GRIPPER_OPEN) {
-    // In toward the wall only as the robot lines up across it.
-    const Eigen::Vector3d lateral = to_target - normal.dot(to_target) * normal;
-    const double standoff = std::clamp(4.0 * lateral.norm() + 0.5 * angle, 0.0, cfg_.standoff_m);
-    Eigen::Isometry3d goal = T_world_target_;
-    goal.translation() += standoff * normal;
-    servo_to(T_world_body, goal, &out);
+    const Eigen::Vector3d into_wall = -normal;
+    servo_to(T_world_body, T_world_target_, &out, dt_s, &into_wall);
+    const Eigen::Vector3d speed(pose->velocity_mps[0], pose->velocity_mps[1],
+                                pose->velocity_mps[2]);
     const bool within = out.status.position_error_m <= cfg_.position_tolerance_m &&
-                        angle <= cfg_.angle_tolerance_rad;
+                        angle <= cfg_.angle_tolerance_rad && speed.norm() <= cfg_.settle_speed_mps;
     settled_ = within ? settled_ + 1 : 0;
     out.status.at_target = settled_ >= cfg_.settle_cycles;
+  } else if (arm_state == A::CLOSING || arm_state == A::GRASP_CHECK) {
+    // Keep station on the grasp pose while the fingers close.
+    servo_to(T_world_body, T_world_target_, &out, dt_s, nullptr);
+    settled_ = 0;
   } else {
     settled_ = 0;
+    integral_.setZero();
   }
   if (arm_state == A::BACKING_OFF || arm_state == A::STOWING) {
     if (!backing_off_) {
@@ -78,7 +111,7 @@ ApproachOutput ApproachController::step(std::int64_t now_us, const hrp::robot_po
     goal.translation() =
         T_world_handrail_.translation() + (back_off_start_m_ + cfg_.back_off_m) * normal +
         (T_world_body.translation() - T_world_handrail_.translation() - out_m * normal);
-    servo_to(T_world_body, goal, &out);
+    servo_to(T_world_body, goal, &out, dt_s, nullptr);
     out.status.backed_off = out_m >= back_off_start_m_ + 0.9 * cfg_.back_off_m;
   } else {
     backing_off_ = false;
@@ -86,11 +119,12 @@ ApproachOutput ApproachController::step(std::int64_t now_us, const hrp::robot_po
   return out;
 }
 
-PerchManager::PerchManager(LcmHub& hub, const ApproachConfig& cfg, const hal::Clock& clock,
+PerchManager::PerchManager(LcmHub& hub, const ApproachConfig& cfg,
+                           const Eigen::Vector3d& p_body_grasp, const hal::Clock& clock,
                            double rate_hz)
     : hub_(hub),
       clock_(clock),
-      controller_(cfg),
+      controller_(cfg, p_body_grasp),
       period_us_(static_cast<std::int64_t>(1e6 / rate_hz)),
       velocity_pub_(hub, channel::kBodyVelocityCommand),
       status_pub_(hub, channel::kApproachStatus) {

@@ -73,11 +73,18 @@ CameraStatus SimulatedCamera::max_frame_size(std::uint32_t* width, std::uint32_t
   return CameraStatus::kSuccess;
 }
 
+std::size_t SimulatedCamera::frame_count() const {
+  return pose_source_ ? static_cast<std::size_t>(-1) : scenario_.T_world_cam.size();
+}
+
 CameraStatus SimulatedCamera::render_and_deliver(std::size_t index) {
   std::lock_guard<std::mutex> lock(render_mutex_);
-  renderer_.render(scenario_.scene, scenario_.T_world_cam[index], scenario_.seed, index, &points_);
-  const hal::DepthFrame frame{index, clock_.now_us(), intrinsics_.width, intrinsics_.height,
-                              points_.data()};
+  const std::int64_t now_us = clock_.now_us();
+  const Eigen::Isometry3d T_world_cam =
+      pose_source_ ? pose_source_->T_world_cam(now_us) : scenario_.T_world_cam[index];
+  renderer_.render(scenario_.scene, T_world_cam, scenario_.seed, index, &points_);
+  hal::DepthFrame frame{index, now_us, intrinsics_.width, intrinsics_.height, points_.data()};
+  if (tamper_) tamper_->tamper(now_us, &frame, &points_);
   if (listener_) listener_->on_new_data(frame);
   return CameraStatus::kSuccess;
 }

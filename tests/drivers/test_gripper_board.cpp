@@ -45,6 +45,25 @@ void test_firmware_parser_resynchronises(void**) {
   assert_true(s.error & GFW_ERR_FORMAT);
 }
 
+// The serial timeout compares times signed: a command stamped just after
+// the tick that checks it (the UART and the tick read the clock apart) is
+// not a timeout. The unsigned comparison tripped the simulated board now
+// and then in hardware-in-loop runs.
+void test_firmware_timeout_is_not_fooled_by_a_late_stamp(void**) {
+  gfw_state s;
+  gfw_init(&s, 0);
+  const std::uint8_t cmd = GFW_CMD_EXIT_SAFE_START;
+  gfw_receive(&s, cmd, 0, 1000);
+  gfw_receive(&s, gfw_crc7(&cmd, 1), 0, 1000);
+  assert_int_equal(s.safe_start, 0);
+  gfw_tick(&s, 0, 0, 999);
+  assert_false(s.error & GFW_ERR_TIMEOUT);
+  assert_int_equal(s.safe_start, 0);
+  gfw_tick(&s, 0, 0, 1000 + GFW_DEFAULT_TIMEOUT_MS + 1);
+  assert_true(s.error & GFW_ERR_TIMEOUT);
+  assert_int_equal(s.safe_start, 1);
+}
+
 struct Rig {
   sim_hal::SimGripperBoard board;
   hal::MonotonicClock clock;
@@ -199,6 +218,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_crc7_vector_and_firmware_agree),
       cmocka_unit_test(test_firmware_parser_resynchronises),
+      cmocka_unit_test(test_firmware_timeout_is_not_fooled_by_a_late_stamp),
       cmocka_unit_test(test_safe_start_calibrate_and_grasp),
       cmocka_unit_test(test_serial_timeout_stops_the_motor),
       cmocka_unit_test(test_faults_on_the_line),

@@ -116,6 +116,7 @@ static void execute(gfw_state* s, uint32_t now_ms) {
         s->mode = GFW_MODE_CLOSING;
         s->stalled = 0;
         s->limit_since_ms = 0;
+        s->stall_since_ms = 0; /* the stall timer is shared with OPEN and CALIBRATE */
       }
       break;
     }
@@ -220,7 +221,10 @@ void gfw_tick(gfw_state* s, int32_t raw_encoder, uint16_t current_ma, uint32_t n
     s->safe_start = 1;
     s->mode = GFW_MODE_IDLE;
   }
-  if (s->timeout_ms && now_ms - s->last_command_ms > s->timeout_ms && !s->safe_start) {
+  /* Signed: a command stamped a millisecond after this tick (the UART and
+   * the tick read the clock at different moments) is not 49 days old. */
+  if (s->timeout_ms && (int32_t)(now_ms - s->last_command_ms) > (int32_t)s->timeout_ms &&
+      !s->safe_start) {
     s->error |= GFW_ERR_TIMEOUT;
     s->safe_start = 1;
     s->mode = GFW_MODE_IDLE;

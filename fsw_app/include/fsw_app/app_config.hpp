@@ -28,8 +28,11 @@ struct ApproachConfig {
   double standoff_m = 0.20;     // first to this distance out from the grasp pose
   double max_speed_mps = 0.10;  // the flyer's approach speed limit
   double max_rate_rps = 0.25;
-  double gain_per_s = 0.8;  // velocity = gain * error, then limited
-  double position_tolerance_m = 0.008;
+  double gain_per_s = 1.5;  // velocity = gain * error (+ integral), then limited
+  double integral_gain_per_s2 = 0.4;
+  double brake_mps2 = 0.03;         // speed limited to what this stops in the distance left
+  double settle_speed_mps = 0.005;  // "at target" also needs the robot this slow
+  double position_tolerance_m = 0.005;
   double angle_tolerance_rad = 0.05;
   double back_off_m = 0.25;  // after letting go
   int settle_cycles = 5;     // within tolerance this many cycles: at target

@@ -6,8 +6,10 @@
 //     along the wall normal;
 //   GRIPPER_OPEN: close in, moving toward the wall only as fast as the
 //     robot is lined up across it; "at target" once within tolerance for a
-//     few cycles;
-//   CLOSING .. PERCHED, FAULT and the rest: hold;
+//     few cycles. Proportional plus a bounded integral near the goal (the
+//     disturbances are slow pushes);
+//   CLOSING, GRASP_CHECK: keep station on the grasp pose;
+//   PERCHED, FAULT and the rest: hold;
 //   BACKING_OFF: straight out along the wall normal, "backed off" once clear.
 // ApproachController is the logic (pure, time injected); PerchManager wires
 // it to LCM on a thread.
@@ -27,6 +29,8 @@
 
 namespace fsw_app {
 
+// Position errors are the grasp point's: body to target would hide the
+// lever of the body's attitude error over the 0.4 m to the grasp point.
 struct ApproachOutput {
   hrp::body_velocity_command_t velocity{};
   hrp::approach_status_t status{};
@@ -34,7 +38,9 @@ struct ApproachOutput {
 
 class ApproachController {
  public:
-  explicit ApproachController(const ApproachConfig& cfg) : cfg_(cfg) {}
+  // p_body_grasp: the grasp point in the body frame, arm in the grip posture.
+  ApproachController(const ApproachConfig& cfg, const Eigen::Vector3d& p_body_grasp)
+      : cfg_(cfg), p_body_grasp_(p_body_grasp) {}
 
   // A new estimate (call once per estimate).
   void on_estimate(const hrp::handrail_estimate_t& estimate);
@@ -47,22 +53,27 @@ class ApproachController {
 
  private:
   // Velocity toward `goal`, limited.
+  // With approach_axis, motion along it waits for the lateral error.
   void servo_to(const Eigen::Isometry3d& T_world_body, const Eigen::Isometry3d& goal,
-                ApproachOutput* out) const;
+                ApproachOutput* out, double dt_s, const Eigen::Vector3d* approach_axis);
 
   ApproachConfig cfg_;
+  Eigen::Vector3d p_body_grasp_;
   bool have_target_ = false;
   Eigen::Isometry3d T_world_target_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_world_handrail_ = Eigen::Isometry3d::Identity();
   std::int64_t handrail_seen_us_ = -1;
   int settled_ = 0;
+  std::int64_t last_step_us_ = 0;
+  Eigen::Vector3d integral_ = Eigen::Vector3d::Zero();
   bool backing_off_ = false;
   double back_off_start_m_ = 0.0;  // distance out from the bar when the back-off began
 };
 
 class PerchManager {
  public:
-  PerchManager(LcmHub& hub, const ApproachConfig& cfg, const hal::Clock& clock, double rate_hz);
+  PerchManager(LcmHub& hub, const ApproachConfig& cfg, const Eigen::Vector3d& p_body_grasp,
+               const hal::Clock& clock, double rate_hz);
   ~PerchManager();
   void start();
   void stop();

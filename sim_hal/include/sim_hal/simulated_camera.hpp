@@ -16,6 +16,23 @@
 
 namespace sim_hal {
 
+// Where the camera is at a moment: a simulated robot's pose, for closed-loop
+// runs in which the camera follows the robot instead of a fixed list.
+class CameraPoseSource {
+ public:
+  virtual ~CameraPoseSource() = default;
+  virtual Eigen::Isometry3d T_world_cam(std::int64_t now_us) = 0;
+};
+
+// A chance to spoil a rendered frame before delivery (fault injection:
+// occlusion, corrupt frames). May change the points and the header.
+class FrameTamper {
+ public:
+  virtual ~FrameTamper() = default;
+  virtual void tamper(std::int64_t now_us, hal::DepthFrame* frame,
+                      std::vector<hal::DepthPoint>* points) = 0;
+};
+
 class SimulatedCamera final : public hal::DepthCamera {
  public:
   enum class Pacing : std::uint8_t { kRealTime, kAsFastAsPossible };
@@ -42,7 +59,12 @@ class SimulatedCamera final : public hal::DepthCamera {
   // DATA_NOT_FOUND after the last pose, DEVICE_IS_BUSY while capturing.
   [[nodiscard]] hal::CameraStatus capture_next();
   std::size_t frames_delivered() const { return next_frame_.load(); }
-  std::size_t frame_count() const { return scenario_.T_world_cam.size(); }
+  // The scenario's poses; unbounded with a pose source.
+  std::size_t frame_count() const;
+
+  // Set before start_capture; neither is owned.
+  void set_pose_source(CameraPoseSource* source) { pose_source_ = source; }
+  void set_tamper(FrameTamper* tamper) { tamper_ = tamper; }
 
  private:
   hal::CameraStatus render_and_deliver(std::size_t index);
@@ -62,6 +84,8 @@ class SimulatedCamera final : public hal::DepthCamera {
   std::atomic<std::size_t> next_frame_{0};
   std::thread thread_;
   std::mutex render_mutex_;
+  CameraPoseSource* pose_source_ = nullptr;
+  FrameTamper* tamper_ = nullptr;
 };
 
 }  // namespace sim_hal

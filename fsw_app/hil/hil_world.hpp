@@ -1,0 +1,103 @@
+#pragma once
+// The world of a hardware-in-loop run on the simulated HAL (host only): a
+// free-flyer carrying the camera, which renders the scenario's scene from
+// the flyer's true pose every frame; the two AX-12A servos and the gripper
+// board as simulated devices on ptys (the arm task drives them through the
+// real drivers); and the contact between gripper and handrail: fingers that
+// close within reach of the bar stop on it, and a closed grip holds the
+// robot to the bar, the joints then turning the body about it.
+// It publishes ROBOT_POSE and follows BODY_VELOCITY_COMMAND over LCM.
+#include <Eigen/Geometry>
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "fsw_app/app_config.hpp"
+#include "fsw_app/lcm_hub.hpp"
+#include "hal/clock.hpp"
+#include "hrp/body_velocity_command_t.hpp"
+#include "hrp/robot_pose_t.hpp"
+#include "sim_hal/flyer.hpp"
+#include "sim_hal/scenario.hpp"
+#include "sim_hal/sim_gripper.hpp"
+#include "sim_hal/sim_servo_bus.hpp"
+#include "sim_hal/simulated_camera.hpp"
+
+namespace fsw_app {
+
+// The start pose of run `seed`: the scenario's first camera pose turned
+// into a body pose, then moved by up to +-10 cm across the wall, 0.9 to
+// 1.1 m out from it, and turned by up to +-8 deg in yaw and +-4 deg in
+// pitch and roll.
+Eigen::Isometry3d hil_start_pose(const sim_hal::Scenario& scenario,
+                                 const Eigen::Isometry3d& T_body_cam, std::uint64_t seed);
+
+struct HilStats {
+  bool locked = false;          // the gripper holds the robot to a bar
+  double grasp_error_m = -1.0;  // grasp point to bar centre line when the grip closed
+  std::int64_t locked_at_us = 0;
+};
+
+class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTamper {
+ public:
+  HilWorld(LcmHub& hub, const sim_hal::Scenario& scenario, const AppConfig& config,
+           const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed,
+           const hal::Clock& clock);
+  ~HilWorld() override;
+
+  bool start(std::string* error);  // the devices' ptys and the physics thread
+  void stop();
+
+  const std::string& servo_path() const { return servos_.path(); }
+  const std::string& gripper_path() const { return gripper_.path(); }
+  sim_hal::SimulatedCamera& camera() { return camera_; }
+  sim_hal::SimServoBus& servos() { return servos_; }
+  sim_hal::SimGripperBoard& gripper() { return gripper_; }
+
+  Eigen::Isometry3d T_world_cam(std::int64_t now_us) override;
+  void tamper(std::int64_t now_us, hal::DepthFrame* frame,
+              std::vector<hal::DepthPoint>* points) override;
+
+  // Faults: the camera sees nothing until then; the next n frames are
+  // corrupt (wrong size, dropped by the camera task).
+  void occlude_until(std::int64_t t_us) { occluded_until_us_ = t_us; }
+  void corrupt_next_frames(int n) { corrupt_frames_ = n; }
+
+  Eigen::Isometry3d body_pose() const;
+  // The grasp point's distance from the target bar's centre line now.
+  double gripper_to_bar_m() const;
+  HilStats stats() const;
+  const sim_hal::Handrail& target_handrail() const { return scenario_.scene.handrails[target_]; }
+
+ private:
+  void physics_loop();
+  void physics_step(double dt_s, std::int64_t now_us);
+  arm::JointAngles joint_angles() const;
+  // Perpendicular distance to the bar's centre line and the position along
+  // it (0 at end 0).
+  void bar_distance(const Eigen::Vector3d& p, double* perp_m, double* along_m) const;
+
+  LcmHub& hub_;
+  const sim_hal::Scenario& scenario_;
+  AppConfig config_;
+  const hal::Clock& clock_;
+  std::size_t target_ = 0;
+  int handrail_counts_ = 0;  // where the fingers stop on this bar
+  sim_hal::SimServoBus servos_;
+  sim_hal::SimGripperBoard gripper_;
+  sim_hal::SimulatedCamera camera_;
+  Mailbox<hrp::body_velocity_command_t> command_box_;
+  Publisher<hrp::robot_pose_t> pose_pub_;
+  mutable std::mutex mutex_;  // flyer, stats, lock
+  sim_hal::SimFlyer flyer_;
+  HilStats stats_;
+  Eigen::Isometry3d T_world_grasp_lock_ = Eigen::Isometry3d::Identity();
+  std::atomic<std::int64_t> occluded_until_us_{0};
+  std::atomic<int> corrupt_frames_{0};
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+};
+
+}  // namespace fsw_app

@@ -1,0 +1,127 @@
+// The approach controller against the simulated free-flyer, in lock step
+// on simulated time: from a metre out it reaches the grasp pose within
+// tolerance and settles ("at target"), through the flyer's disturbances;
+// it holds while the arm is not ready, and backs off after letting go.
+#include <cmath>
+#include <cstdio>
+
+#include "cmocka_cpp.hpp"
+#include "fsw_app/msg_convert.hpp"
+#include "fsw_app/perch_manager.hpp"
+#include "sim_hal/flyer.hpp"
+
+namespace {
+
+using A = hrp::arm_state_t;
+
+struct Loop {
+  fsw_app::ApproachConfig cfg;
+  Eigen::Vector3d p_body_grasp = arm::forward_kinematics(arm::ArmGeometry{}, {}).translation();
+  fsw_app::ApproachController ctl{cfg, p_body_grasp};
+  Eigen::Isometry3d T_world_handrail = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d T_world_target = Eigen::Isometry3d::Identity();
+  sim_hal::SimFlyer flyer;
+  std::int64_t now_us = 0;
+  fsw_app::ApproachOutput out;
+
+  explicit Loop(std::uint64_t seed) : flyer(start_pose(), sim_hal::FlyerParams{}, seed) {
+    // The wall normal is world +x; the bar runs along world z.
+    T_world_handrail.linear().col(0) = Eigen::Vector3d::UnitX();
+    T_world_handrail.linear().col(1) = Eigen::Vector3d::UnitY();
+    T_world_handrail.linear().col(2) = Eigen::Vector3d::UnitZ();
+    T_world_handrail.translation() = Eigen::Vector3d(0.06, 0.0, 0.0);
+    T_world_target = T_world_handrail;
+    T_world_target.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T_world_target.translation() = Eigen::Vector3d(0.46, 0.0, 0.05);
+    hrp::handrail_estimate_t e{};
+    e.state = hrp::handrail_estimate_t::STATE_NE;
+    e.capture_utime = 1;
+    e.target_in_world = true;
+    fsw_app::to_msg(T_world_target, &e.T_world_target);
+    fsw_app::to_msg(T_world_handrail, &e.T_world_handrail);
+    ctl.on_estimate(e);
+  }
+  static Eigen::Isometry3d start_pose() {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = (Eigen::AngleAxisd(M_PI + 0.1, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitY()))
+                     .toRotationMatrix();
+    T.translation() = Eigen::Vector3d(1.4, 0.08, 0.0);
+    return T;
+  }
+  // Runs the controller at 20 Hz and the flyer at 100 Hz for `seconds`.
+  void run(double seconds, std::int8_t arm_state) {
+    for (int k = 0; k < seconds * 100; ++k) {
+      now_us += 10000;
+      if (k % 5 == 0) {
+        hrp::robot_pose_t pose{};
+        fsw_app::to_msg(flyer.pose(), &pose.T_world_body);
+        for (int i = 0; i < 3; ++i) pose.velocity_mps[i] = flyer.velocity()[i];
+        out = ctl.step(now_us, &pose, arm_state);
+      }
+      Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+      if (!out.velocity.hold) {
+        v = Eigen::Vector3d(out.velocity.velocity_mps[0], out.velocity.velocity_mps[1],
+                            out.velocity.velocity_mps[2]);
+        w = Eigen::Vector3d(out.velocity.angular_velocity_rps[0],
+                            out.velocity.angular_velocity_rps[1],
+                            out.velocity.angular_velocity_rps[2]);
+      }
+      flyer.step(0.01, v, w);
+    }
+  }
+  // The grasp point's error.
+  double error_m() const {
+    return (flyer.pose() * p_body_grasp - T_world_target * p_body_grasp).norm();
+  }
+};
+
+void test_reaches_and_settles_on_the_grasp_pose(void**) {
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    Loop loop(seed);
+    loop.run(2.0, A::STOWED);  // not perching: holds
+    assert_true(loop.out.velocity.hold);
+    loop.run(12.0, A::DEPLOYING);  // to the stand-off pose
+    const double standoff_err =
+        (loop.flyer.pose().translation() -
+         (loop.T_world_target.translation() + loop.cfg.standoff_m * Eigen::Vector3d::UnitX()))
+            .norm();
+    double t_at = -1.0;
+    for (int k = 0; k < 400 && t_at < 0.0; ++k) {
+      loop.run(0.1, A::GRIPPER_OPEN);
+      if (loop.out.status.at_target) t_at = 0.1 * (k + 1);
+    }
+    const double at_err = loop.error_m();
+    loop.run(1.5, A::CLOSING);  // station keeping while the fingers close
+    std::printf(
+        "seed %llu: stand-off error %.1f mm, at target after %.1f s, error %.1f mm, after the "
+        "close %.1f mm\n",
+        static_cast<unsigned long long>(seed), standoff_err * 1000.0, t_at, at_err * 1000.0,
+        loop.error_m() * 1000.0);
+    assert_true(standoff_err < 0.02);
+    assert_true(t_at > 0.0);
+    assert_true(at_err <= loop.cfg.position_tolerance_m + 0.001);
+    assert_true(loop.error_m() <= loop.cfg.position_tolerance_m);
+  }
+}
+
+void test_backs_off_after_letting_go(void**) {
+  Loop loop(3);
+  loop.flyer.hold_at(loop.T_world_target);
+  loop.run(0.5, A::UNPERCHING);
+  assert_true(loop.out.velocity.hold);
+  loop.run(10.0, A::BACKING_OFF);
+  assert_true(loop.out.status.backed_off);
+  const double out_m = loop.flyer.pose().translation().x() - loop.T_world_target.translation().x();
+  assert_true(out_m > 0.9 * loop.cfg.back_off_m);
+}
+
+}  // namespace
+
+int main() {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_reaches_and_settles_on_the_grasp_pose),
+      cmocka_unit_test(test_backs_off_after_letting_go),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
