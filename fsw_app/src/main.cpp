@@ -65,7 +65,7 @@ void usage(FILE* out) {
                "  --summary-json FILE   write the summary as one JSON object\n"
                "  --fault NAME[@S]      sim: inject a fault S seconds (default 1) after the\n"
                "                        approach starts: servo-silent, gripper-overcurrent,\n"
-               "                        occlude (1 s), corrupt-frames (10 frames)\n"
+               "                        occlude (1 s), corrupt-frames (5 frames)\n"
                "  --handrail iss|round  the handrail kind to look for (default from the config)\n"
                "  --budget-us N         the estimator's frame budget (default: the use case's\n"
                "                        frame period); a tiny one shows the over-budget path\n"
@@ -385,7 +385,7 @@ int main(int argc, char** argv) {
       } else if (f == "occlude") {
         world->occlude_until(clock.now_us() + 1000000);
       } else if (f == "corrupt-frames") {
-        world->corrupt_next_frames(10);
+        world->corrupt_next_frames(5);
       }
     }
 #endif

@@ -1,0 +1,155 @@
+// The hardware-in-loop perching run, end to end: the fsw_app program on
+// the simulated HAL, its tasks on real LCM (udpm on loopback), the arm on
+// the simulated servos and gripper board over ptys. A clean perch, then
+// each fault the run must survive: every one ends in a defined state with
+// its reason on the arm state, never a hang or a crash.
+//   argv[1]: the fsw_app program
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cmocka_cpp.hpp"
+#include "hal/json.hpp"
+
+extern char** environ;
+
+namespace {
+
+std::string g_program;
+int g_port = 7700;
+
+std::string source(const std::string& rel) {
+  const char* d = std::getenv("HRP_SOURCE_DIR");
+  return std::string(d ? d : ".") + "/" + rel;
+}
+
+struct Outcome {
+  int exit_status = -1;
+  hal::JsonValue summary;
+  const hal::JsonValue* get(const char* key) const { return summary.find(key); }
+  std::string text(const char* key) const {
+    const hal::JsonValue* v = get(key);
+    return v && v->is_string() ? v->text : "";
+  }
+  double number(const char* key) const {
+    const hal::JsonValue* v = get(key);
+    return v && v->is_number() ? v->number : -1.0;
+  }
+  bool flag(const char* key) const {
+    const hal::JsonValue* v = get(key);
+    return v && v->is_bool() && v->boolean;
+  }
+};
+
+// Runs one perch with extra arguments; each run gets its own udpm port so
+// that runs never hear each other.
+Outcome run(const std::string& scenario, std::vector<std::string> extra) {
+  const std::string summary = "/tmp/hrp_hil_" + std::to_string(getpid()) + "_" +
+                              std::to_string(g_port) + ".json";
+  std::remove(summary.c_str());
+  std::vector<std::string> args = {g_program,
+                                   "--config",
+                                   source("fsw_app/config/fsw_app.json"),
+                                   "--hal",
+                                   "sim",
+                                   "--scenario",
+                                   source("sim_hal/scenarios/" + scenario + ".json"),
+                                   "--perch",
+                                   "--quiet",
+                                   "--timeout",
+                                   "60",
+                                   "--lcm-url",
+                                   "udpm://239.255.76.67:" + std::to_string(g_port++) + "?ttl=0",
+                                   "--summary-json",
+                                   summary};
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  Outcome out;
+  assert_int_equal(posix_spawn(&pid, g_program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  int status = 0;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  assert_true(WIFEXITED(status));  // never a crash
+  out.exit_status = WEXITSTATUS(status);
+  std::ifstream in(summary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string error;
+  if (!hal::parse_json(text.str(), &out.summary, &error)) {
+    print_error("no summary from the run (%s): %s\n", summary.c_str(), error.c_str());
+    fail();
+  }
+  std::remove(summary.c_str());
+  std::printf("  %s: %s %s %s\n", scenario.c_str(), out.text("arm_state").c_str(),
+              out.text("fault").c_str(), out.text("fault_text").c_str());
+  return out;
+}
+
+void test_clean_perch(void**) {
+  const Outcome o = run("approach-iss", {"--seed", "2"});
+  assert_true(o.flag("perched"));
+  assert_true(o.flag("success"));
+  assert_int_equal(o.exit_status, 0);
+  assert_true(o.number("grasp_error_m") >= 0.0 && o.number("grasp_error_m") <= 0.01);
+  assert_true(o.number("frames_processed") > 10);
+}
+
+void test_servo_stops_answering_mid_approach(void**) {
+  const Outcome o = run("approach-iss", {"--seed", "3", "--fault", "servo-silent@0.5"});
+  assert_string_equal(o.text("arm_state").c_str(), "FAULT");
+  assert_string_equal(o.text("fault").c_str(), "SERVO_NO_REPLY");
+  assert_int_equal(o.exit_status, 1);
+}
+
+void test_gripper_over_current(void**) {
+  const Outcome o = run("approach-iss", {"--seed", "4", "--fault", "gripper-overcurrent@1"});
+  assert_string_equal(o.text("arm_state").c_str(), "FAULT");
+  assert_string_equal(o.text("fault").c_str(), "GRIPPER_OVER_CURRENT");
+}
+
+void test_handrail_occluded_for_a_second_is_ridden_out(void**) {
+  const Outcome o = run("approach-iss", {"--seed", "5", "--fault", "occlude@1"});
+  assert_true(o.flag("perched"));
+}
+
+void test_burst_of_corrupt_frames_is_dropped_and_counted(void**) {
+  const Outcome o = run("approach-iss", {"--seed", "6", "--fault", "corrupt-frames@1"});
+  assert_true(o.flag("perched"));
+  assert_int_equal(static_cast<int>(o.number("frames_corrupt")), 5);
+}
+
+void test_estimator_over_budget(void**) {
+  // A 50 us budget: every frame runs over and is reported so, with no
+  // pose; the approach never sees the handrail and ends HANDRAIL_LOST.
+  const Outcome o = run("approach-iss", {"--seed", "7", "--budget-us", "50"});
+  assert_string_equal(o.text("fault").c_str(), "HANDRAIL_LOST");
+  assert_true(o.number("deadline_misses") > 3);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s FSW_APP\n", argv[0]);
+    return 2;
+  }
+  g_program = argv[1];
+  g_port = 7700 + static_cast<int>(getpid() % 200);
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_clean_perch),
+      cmocka_unit_test(test_servo_stops_answering_mid_approach),
+      cmocka_unit_test(test_gripper_over_current),
+      cmocka_unit_test(test_handrail_occluded_for_a_second_is_ridden_out),
+      cmocka_unit_test(test_burst_of_corrupt_frames_is_dropped_and_counted),
+      cmocka_unit_test(test_estimator_over_budget),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
