@@ -349,8 +349,11 @@ int main(int argc, char** argv) {
   hrp::arm_state_t arm{};
   hrp::approach_status_t approach{};
   bool commanded = false, approach_started = false, done = false, perched = false;
-  double perch_cmd_s = 0.0, perched_s = 0.0, approach_s = 0.0, last_print = -10.0;
+  double perch_cmd_s = 0.0, perched_s = 0.0, last_print = -10.0;
+#ifdef HRP_WITH_SIM
+  double approach_s = 0.0;
   std::size_t next_fault = 0;
+#endif
   int rc = 0;
   while (!g_stop && !done) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -368,7 +371,9 @@ int main(int argc, char** argv) {
     }
     if (have_arm && arm.state == hrp::arm_state_t::GRIPPER_OPEN && !approach_started) {
       approach_started = true;
+#ifdef HRP_WITH_SIM
       approach_s = t;
+#endif
     }
 #ifdef HRP_WITH_SIM
     // Faults, timed from the start of the approach.

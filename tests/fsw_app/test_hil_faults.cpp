@@ -53,25 +53,25 @@ struct Outcome {
 // Runs one perch with extra arguments; each run gets its own udpm port so
 // that runs never hear each other.
 Outcome run(const std::string& scenario, std::vector<std::string> extra) {
-  const std::string summary = "/tmp/hrp_hil_" + std::to_string(getpid()) + "_" +
-                              std::to_string(g_port) + ".json";
+  const std::string summary =
+      "/tmp/hrp_hil_" + std::to_string(getpid()) + "_" + std::to_string(g_port) + ".json";
   std::remove(summary.c_str());
-  std::vector<std::string> args = {g_program,
-                                   "--config",
-                                   source("fsw_app/config/fsw_app.json"),
-                                   "--hal",
-                                   "sim",
-                                   "--scenario",
-                                   source("sim_hal/scenarios/" + scenario + ".json"),
-                                   "--perch",
-                                   "--quiet",
-                                   "--timeout",
-                                   "60",
-                                   "--lcm-url",
-                                   g_udpm ? "udpm://239.255.76.67:" + std::to_string(g_port++) + "?ttl=0"
-                                          : "memq://",
-                                   "--summary-json",
-                                   summary};
+  std::vector<std::string> args = {
+      g_program,
+      "--config",
+      source("fsw_app/config/fsw_app.json"),
+      "--hal",
+      "sim",
+      "--scenario",
+      source("sim_hal/scenarios/" + scenario + ".json"),
+      "--perch",
+      "--quiet",
+      "--timeout",
+      "60",
+      "--lcm-url",
+      g_udpm ? "udpm://239.255.76.67:" + std::to_string(g_port++) + "?ttl=0" : "memq://",
+      "--summary-json",
+      summary};
   args.insert(args.end(), extra.begin(), extra.end());
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
