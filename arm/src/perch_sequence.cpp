@@ -159,27 +159,31 @@ void PerchSequence::step(std::int64_t now_us) {
   run_state();
 }
 
+namespace {
+
+// One device's read: the reading kept when it succeeded, the run of
+// failures counted (saturating) when it did not.
+template <typename Reading>
+void note_read(const IoResult& r, const Reading& reading, Reading* kept, bool* valid,
+               std::uint8_t* failures) {
+  *valid = r.ok();
+  if (r.ok()) {
+    *kept = reading;
+    *failures = 0;
+  } else if (*failures < 255) {
+    ++*failures;
+  }
+}
+
+}  // namespace
+
 bool PerchSequence::read_devices() {
   JointReading joints;
   const IoResult jr = joints_.read(&joints);
-  if (jr.ok()) {
-    status_.joints = joints;
-    status_.joints_valid = true;
-    joint_failures_ = 0;
-  } else {
-    status_.joints_valid = false;
-    if (joint_failures_ < 255) ++joint_failures_;
-  }
+  note_read(jr, joints, &status_.joints, &status_.joints_valid, &joint_failures_);
   GripperReading gripper;
   const IoResult gr = gripper_.read(&gripper);
-  if (gr.ok()) {
-    status_.gripper = gripper;
-    status_.gripper_valid = true;
-    gripper_failures_ = 0;
-  } else {
-    status_.gripper_valid = false;
-    if (gripper_failures_ < 255) ++gripper_failures_;
-  }
+  note_read(gr, gripper, &status_.gripper, &status_.gripper_valid, &gripper_failures_);
   if (status_.state == PerchState::kFault) return jr.ok() && gr.ok();
   if (joint_failures_ >= config_.io_failures_to_fault) {
     fault(fault_for_io(jr), jr, "joint read failed");

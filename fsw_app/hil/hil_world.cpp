@@ -1,6 +1,5 @@
 #include "hil_world.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -104,14 +103,13 @@ bool HilWorld::start(std::string* error) {
     return false;
   }
   if (!servos_.start(error) || !gripper_.start(error)) return false;
-  running_ = true;
-  thread_ = std::thread(&HilWorld::physics_loop, this);
+  physics_.start(10000, [this] { physics_tick(); });
   return true;
 }
 
 void HilWorld::stop() {
   (void)camera_.stop_capture();
-  if (running_.exchange(false) && thread_.joinable()) thread_.join();
+  physics_.stop();
   servos_.stop();
   gripper_.stop();
 }
@@ -170,29 +168,23 @@ HilStats HilWorld::stats() const {
   return stats_;
 }
 
-void HilWorld::physics_loop() {
-  auto next = std::chrono::steady_clock::now();
-  std::int64_t last_us = clock_.now_us();
-  int tick = 0;
-  hrp::robot_pose_t msg{};
-  while (running_.load()) {
-    next += std::chrono::milliseconds(10);
-    std::this_thread::sleep_until(next);
-    const std::int64_t now = clock_.now_us();
-    const double dt = 1e-6 * static_cast<double>(now - last_us);
-    last_us = now;
-    physics_step(dt, now);
-    if (++tick % 2 == 0) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      msg.utime = now;
-      to_msg(flyer_.pose(), &msg.T_world_body);
-      for (int k = 0; k < 3; ++k) {
-        msg.velocity_mps[k] = flyer_.velocity()[k];
-        msg.angular_velocity_rps[k] = flyer_.angular_velocity()[k];
-      }
+void HilWorld::physics_tick() {
+  const std::int64_t now = clock_.now_us();
+  const double dt = last_tick_us_ > 0 ? 1e-6 * static_cast<double>(now - last_tick_us_) : 0.0;
+  last_tick_us_ = now;
+  physics_step(dt, now);
+  // ROBOT_POSE at half the physics rate: 50 Hz.
+  if (++ticks_ % 2 != 0) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pose_msg_.utime = now;
+    to_msg(flyer_.pose(), &pose_msg_.T_world_body);
+    for (int k = 0; k < 3; ++k) {
+      pose_msg_.velocity_mps[k] = flyer_.velocity()[k];
+      pose_msg_.angular_velocity_rps[k] = flyer_.angular_velocity()[k];
     }
-    if (tick % 2 == 0) pose_pub_.publish(msg);
   }
+  pose_pub_.publish(pose_msg_);
 }
 
 void HilWorld::physics_step(double dt_s, std::int64_t now_us) {

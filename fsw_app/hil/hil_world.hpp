@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <mutex>
 #include <string>
-#include <thread>
 
 #include "fsw_app/app_config.hpp"
 #include "fsw_app/lcm_hub.hpp"
+#include "fsw_app/periodic_thread.hpp"
 #include "hal/clock.hpp"
 #include "hrp/body_velocity_command_t.hpp"
 #include "hrp/robot_pose_t.hpp"
@@ -72,7 +72,7 @@ class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTa
   const sim_hal::Handrail& target_handrail() const { return scenario_.scene.handrails[target_]; }
 
  private:
-  void physics_loop();
+  void physics_tick();  // 100 Hz
   void physics_step(double dt_s, std::int64_t now_us);
   arm::JointAngles joint_angles() const;
   // Perpendicular distance to the bar's centre line and the position along
@@ -96,8 +96,10 @@ class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTa
   Eigen::Isometry3d T_world_grasp_lock_ = Eigen::Isometry3d::Identity();
   std::atomic<std::int64_t> occluded_until_us_{0};
   std::atomic<int> corrupt_frames_{0};
-  std::atomic<bool> running_{false};
-  std::thread thread_;
+  std::int64_t last_tick_us_ = 0;  // the physics thread's
+  std::uint64_t ticks_ = 0;
+  hrp::robot_pose_t pose_msg_{};
+  PeriodicThread physics_;  // last: stopped before the members it uses go
 };
 
 }  // namespace fsw_app

@@ -1,6 +1,6 @@
 #include "fsw_app/arm_task.hpp"
 
-#include <chrono>
+#include "fsw_app/msg_convert.hpp"
 
 namespace fsw_app {
 
@@ -13,12 +13,7 @@ ArmTask::ArmTask(LcmHub& hub, arm::JointActuators& joints, arm::GripperActuator&
       state_pub_(hub, channel::kArmState) {
   hub_.subscribe(channel::kPerchCommand, &command_box_);
   hub_.subscribe(channel::kApproachStatus, &approach_box_);
-  // The strings get their room now, so that filling them later does not
-  // allocate.
-  state_.state_name.reserve(32);
-  state_.fault_name.reserve(32);
-  state_.fault_text.reserve(160);
-  state_.last_reject_name.reserve(32);
+  reserve_text(&state_);
 }
 
 ArmTask::~ArmTask() {
@@ -26,22 +21,11 @@ ArmTask::~ArmTask() {
 }
 
 void ArmTask::start() {
-  if (running_.exchange(true)) return;
-  thread_ = std::thread([this] {
-    auto next = std::chrono::steady_clock::now();
-    while (running_.load()) {
-      cycle();
-      next += std::chrono::microseconds(period_us_);
-      const auto now = std::chrono::steady_clock::now();
-      if (next < now) next = now;  // overran: no burst of catch-up cycles
-      std::this_thread::sleep_until(next);
-    }
-  });
+  thread_.start(period_us_, [this] { cycle(); });
 }
 
 void ArmTask::stop() {
-  if (!running_.exchange(false)) return;
-  if (thread_.joinable()) thread_.join();
+  thread_.stop();
 }
 
 void ArmTask::cycle() {

@@ -18,8 +18,7 @@ EstimatorTask::EstimatorTask(LcmHub& hub, CameraTask& camera, FrameRing& ring,
       tracker_(cfg.tracker),
       estimate_pub_(hub, channel::kHandrailEstimate),
       health_pub_(hub, channel::kEstimatorHealth),
-      frame_points_(static_cast<std::size_t>(cfg.max_width) * cfg.max_height),
-      cloud_points_(frame_points_.size()) {
+      cloud_points_(static_cast<std::size_t>(cfg.max_width) * cfg.max_height) {
   hub_.subscribe(channel::kRobotPose, &pose_box_);
   last_health_us_ = clock_.now_us();
 }
@@ -56,11 +55,11 @@ void EstimatorTask::note_time(std::int32_t us) {
 bool EstimatorTask::process_next(int timeout_ms) {
   seen_ = camera_.wait_for_frame(seen_, timeout_ms);
   hal::DepthFrame frame;
-  if (ring_.pop_newest(&frame, frame_points_.data()) != RingStatus::kOk) return false;
-  const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
-  for (std::size_t k = 0; k < n; ++k) {
-    const hal::DepthPoint& p = frame_points_[k];
-    cloud_points_[k] = {p.x_m, p.y_m, p.z_m, p.noise_m, p.gray_value, p.confidence};
+  const auto to_cloud_point = [](const hal::DepthPoint& p) {
+    return estimator::CloudPoint{p.x_m, p.y_m, p.z_m, p.noise_m, p.gray_value, p.confidence};
+  };
+  if (ring_.pop_newest_as(&frame, cloud_points_.data(), to_cloud_point) != RingStatus::kOk) {
+    return false;
   }
   estimator::OrganizedCloud cloud;
   cloud.frame_id = frame.frame_id;

@@ -38,21 +38,15 @@ RingStatus FrameRing::push(const hal::DepthFrame& frame) {
   return RingStatus::kOk;
 }
 
-RingStatus FrameRing::pop_newest(hal::DepthFrame* out, hal::DepthPoint* out_points) {
-  std::lock_guard<std::mutex> lock(mutex_);
+const FrameRing::Slot* FrameRing::take_newest() {
   const std::uint64_t newest = next_sequence_ - 1;
-  if (newest == 0 || newest <= last_read_) return RingStatus::kEmpty;
+  if (newest == 0 || newest <= last_read_) return nullptr;
   // Unread frames older than the newest are skipped: dropped.
   const std::uint64_t oldest_kept = newest >= n_slots_ ? newest - n_slots_ + 1 : 1;
   const std::uint64_t first_unread = std::max(last_read_ + 1, oldest_kept);
   dropped_ += newest - first_unread;
-  const Slot& slot = slots_[newest % n_slots_];
-  const std::size_t n = static_cast<std::size_t>(slot.header.width) * slot.header.height;
-  std::copy(slot.header.points, slot.header.points + n, out_points);
-  *out = slot.header;
-  out->points = out_points;
   last_read_ = newest;
-  return RingStatus::kOk;
+  return &slots_[newest % n_slots_];
 }
 
 std::uint64_t FrameRing::pushed() const {

@@ -1,7 +1,6 @@
 #include "fsw_app/perch_manager.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 #include "fsw_app/msg_convert.hpp"
 
@@ -131,10 +130,7 @@ PerchManager::PerchManager(LcmHub& hub, const ApproachConfig& cfg,
   hub_.subscribe(channel::kHandrailEstimate, &estimate_box_);
   hub_.subscribe(channel::kRobotPose, &pose_box_);
   hub_.subscribe(channel::kArmState, &arm_box_);
-  arm_.state_name.reserve(32);
-  arm_.fault_name.reserve(32);
-  arm_.fault_text.reserve(160);
-  arm_.last_reject_name.reserve(32);
+  reserve_text(&arm_);
 }
 
 PerchManager::~PerchManager() {
@@ -142,22 +138,11 @@ PerchManager::~PerchManager() {
 }
 
 void PerchManager::start() {
-  if (running_.exchange(true)) return;
-  thread_ = std::thread([this] {
-    auto next = std::chrono::steady_clock::now();
-    while (running_.load()) {
-      cycle();
-      next += std::chrono::microseconds(period_us_);
-      const auto now = std::chrono::steady_clock::now();
-      if (next < now) next = now;
-      std::this_thread::sleep_until(next);
-    }
-  });
+  thread_.start(period_us_, [this] { cycle(); });
 }
 
 void PerchManager::stop() {
-  if (!running_.exchange(false)) return;
-  if (thread_.joinable()) thread_.join();
+  thread_.stop();
 }
 
 void PerchManager::cycle() {

@@ -37,6 +37,29 @@ void test_newest_wins_and_old_frames_are_dropped(void**) {
                    static_cast<int>(fsw_app::RingStatus::kFrameTooLarge));
 }
 
+// Popping into another point type converts while copying out, with the
+// same bookkeeping as a plain pop.
+void test_pop_converts_into_the_consumers_type(void**) {
+  fsw_app::FrameRing ring(2, 3, 2);
+  for (int k = 1; k <= 3; ++k) {
+    const std::vector<hal::DepthPoint> pts = frame_points(static_cast<float>(k));
+    ring.push({static_cast<std::uint64_t>(k), k * 10, 3, 2, pts.data()});
+  }
+  std::vector<double> depth_mm(6, -1.0);
+  hal::DepthFrame got;
+  assert_int_equal(
+      static_cast<int>(ring.pop_newest_as(&got, depth_mm.data(),
+                                          [](const hal::DepthPoint& p) { return 1000.0 * p.z_m; })),
+      static_cast<int>(fsw_app::RingStatus::kOk));
+  assert_int_equal(got.frame_id, 3);
+  assert_null(got.points);  // not a DepthPoint buffer
+  for (double d : depth_mm) assert_true(d == 3000.0);
+  assert_int_equal(ring.dropped(), 2);
+  assert_int_equal(static_cast<int>(ring.pop_newest_as(&got, depth_mm.data(),
+                                                       [](const hal::DepthPoint&) { return 0.0; })),
+                   static_cast<int>(fsw_app::RingStatus::kEmpty));
+}
+
 void test_producer_and_consumer_threads(void**) {
   fsw_app::FrameRing ring(4, 3, 2);
   constexpr int kFrames = 2000;
@@ -65,6 +88,7 @@ void test_producer_and_consumer_threads(void**) {
 int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_newest_wins_and_old_frames_are_dropped),
+      cmocka_unit_test(test_pop_converts_into_the_consumers_type),
       cmocka_unit_test(test_producer_and_consumer_threads),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

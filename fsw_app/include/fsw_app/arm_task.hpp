@@ -4,12 +4,11 @@
 // in ARM_STATE) and APPROACH_STATUS, and publishes ARM_STATE every cycle.
 // It owns no port: the caller builds the drivers (real ports or the
 // simulated devices' ptys) and hands over the interfaces.
-#include <atomic>
 #include <cstdint>
-#include <thread>
 
 #include "arm/perch_sequence.hpp"
 #include "fsw_app/lcm_hub.hpp"
+#include "fsw_app/periodic_thread.hpp"
 #include "hal/clock.hpp"
 #include "hrp/approach_status_t.hpp"
 #include "hrp/arm_state_t.hpp"
@@ -46,8 +45,7 @@ class ArmTask {
   hrp::arm_state_t state_{};
   std::uint64_t command_seen_ = 0;
   std::int32_t last_sequence_ = 0;
-  std::atomic<bool> running_{false};
-  std::thread thread_;
+  PeriodicThread thread_;  // last: stopped before the members it uses go
 };
 
 }  // namespace fsw_app

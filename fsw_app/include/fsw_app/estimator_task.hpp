@@ -79,7 +79,6 @@ class EstimatorTask {
   Mailbox<hrp::robot_pose_t> pose_box_;
   Publisher<hrp::handrail_estimate_t> estimate_pub_;
   Publisher<hrp::estimator_health_t> health_pub_;
-  std::vector<hal::DepthPoint> frame_points_;
   std::vector<estimator::CloudPoint> cloud_points_;
   hrp::handrail_estimate_t estimate_{};
   hrp::robot_pose_t pose_{};

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <type_traits>
 
 #include "hal/depth_frame.hpp"
 
@@ -25,7 +26,27 @@ class FrameRing {
 
   // Copies the newest unread frame into `out_points` (capacity max pixels)
   // and fills `out`; older unread frames are counted as dropped.
-  RingStatus pop_newest(hal::DepthFrame* out, hal::DepthPoint* out_points);
+  RingStatus pop_newest(hal::DepthFrame* out, hal::DepthPoint* out_points) {
+    return pop_newest_as(out, out_points, [](const hal::DepthPoint& p) { return p; });
+  }
+  // The same, converting each point as it is copied out (the estimator's
+  // own point type): one copy from the ring to the consumer, not two.
+  // `out->points` is left null when Point is not hal::DepthPoint.
+  template <typename Point, typename Convert>
+  RingStatus pop_newest_as(hal::DepthFrame* out, Point* out_points, Convert convert) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const Slot* slot = take_newest();
+    if (!slot) return RingStatus::kEmpty;
+    const std::size_t n = static_cast<std::size_t>(slot->header.width) * slot->header.height;
+    for (std::size_t k = 0; k < n; ++k) out_points[k] = convert(slot->header.points[k]);
+    *out = slot->header;
+    if constexpr (std::is_same_v<Point, hal::DepthPoint>) {
+      out->points = out_points;
+    } else {
+      out->points = nullptr;
+    }
+    return RingStatus::kOk;
+  }
 
   std::uint64_t pushed() const;
   std::uint64_t dropped() const;
@@ -35,6 +56,9 @@ class FrameRing {
     hal::DepthFrame header;
     std::uint64_t sequence = 0;
   };
+  // With the mutex held: the newest unread slot, marked read, with the
+  // unread ones before it counted as dropped; null when there is none.
+  const Slot* take_newest();
   std::size_t n_slots_;
   std::size_t max_pixels_;
   std::unique_ptr<Slot[]> slots_;

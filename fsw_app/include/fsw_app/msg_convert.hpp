@@ -1,7 +1,8 @@
 #pragma once
-// Between Eigen transforms and the pose_t message.
+// Between Eigen transforms and the pose_t message; message helpers.
 #include <Eigen/Geometry>
 
+#include "hrp/arm_state_t.hpp"
 #include "hrp/pose_t.hpp"
 
 namespace fsw_app {
@@ -27,6 +28,15 @@ inline Eigen::Isometry3d from_msg(const hrp::pose_t& msg) {
 inline void clear(hrp::pose_t* msg) {
   for (double& v : msg->position_m) v = 0.0;
   for (double& v : msg->quat_wxyz) v = 0.0;
+}
+
+// Gives the arm state's strings their room once, so that filling or
+// decoding them later does not allocate.
+inline void reserve_text(hrp::arm_state_t* msg) {
+  msg->state_name.reserve(32);
+  msg->fault_name.reserve(32);
+  msg->fault_text.reserve(160);
+  msg->last_reject_name.reserve(32);
 }
 
 }  // namespace fsw_app

@@ -14,12 +14,11 @@
 // ApproachController is the logic (pure, time injected); PerchManager wires
 // it to LCM on a thread.
 #include <Eigen/Geometry>
-#include <atomic>
 #include <cstdint>
-#include <thread>
 
 #include "fsw_app/app_config.hpp"
 #include "fsw_app/lcm_hub.hpp"
+#include "fsw_app/periodic_thread.hpp"
 #include "hal/clock.hpp"
 #include "hrp/approach_status_t.hpp"
 #include "hrp/arm_state_t.hpp"
@@ -94,8 +93,7 @@ class PerchManager {
   hrp::robot_pose_t pose_{};
   hrp::arm_state_t arm_{};
   std::uint64_t estimate_seen_ = 0;
-  std::atomic<bool> running_{false};
-  std::thread thread_;
+  PeriodicThread thread_;  // last: stopped before the members it uses go
 };
 
 }  // namespace fsw_app
