@@ -464,6 +464,17 @@ void PerchSequence::run_state() {
   switch (s) {
     case PerchState::kInit:
       if (!status_.joints_valid || !g_ok) return;  // retried until the timeout
+      // The recovery at entry may itself have been lost on a noisy line:
+      // until the devices read back clean, recover again (bounded by the
+      // INIT timeout).
+      if (g.safe_start || (g.latched_error & (kGripperTimeoutBit | kGripperOverCurrentBit))) {
+        (void)gripper_.recover();
+        return;
+      }
+      if ((status_.joints.tilt_error_bits | status_.joints.pan_error_bits) & kServoAlarmBits) {
+        (void)joints_.recover();
+        return;
+      }
       if (holding_handrail()) {
         // Restarted while perched: keep holding, never let go on our own.
         if (command_joints(status_.joints.q)) enter(PerchState::kPerched);
