@@ -31,6 +31,12 @@ FaultCode fault_for_io(const IoResult& io) {
                                              : FaultCode::kGripperNoReply;
 }
 
+// A packet lost or mangled on the line: worth sending again. A device
+// error or a refused argument is not.
+bool is_line_error(const IoResult& io) {
+  return io.status == IoStatus::kNoReply || io.status == IoStatus::kCorrupt;
+}
+
 }  // namespace
 
 PerchSequence::PerchSequence(JointActuators& joints, GripperActuator& gripper,
@@ -147,6 +153,7 @@ void PerchSequence::step(std::int64_t now_us) {
   }
   const bool io_ok = read_devices();
   if (io_ok && status_.state != PerchState::kFault) check_device_faults();
+  if (entry_owed_ && status_.state != PerchState::kFault) run_entry_action();
   if (pending_) {
     pending_ = false;
     const PerchCommand command = pending_command_;
@@ -250,17 +257,6 @@ bool PerchSequence::joints_at(const JointAngles& goal) const {
          std::fabs(j.q.pan_rad - goal.pan_rad) <= config_.joint_tolerance_rad && !j.moving;
 }
 
-bool PerchSequence::require(const IoResult& io, const char* what) {
-  if (io.ok()) return true;
-  fault(fault_for_io(io), io, what);
-  return false;
-}
-
-bool PerchSequence::command_joints(const JointAngles& goal) {
-  status_.joint_goal = goal;
-  return require(joints_.move_to(goal, config_.joint_speed_rad_s), "joint move refused");
-}
-
 void PerchSequence::fault(FaultCode code, const IoResult& io, const char* detail) {
   if (status_.state == PerchState::kFault) return;  // keep the first cause
   status_.fault = code;
@@ -299,48 +295,89 @@ void PerchSequence::enter(PerchState state) {
   }
   status_.state = state;
   status_.state_entered_us = now_us_;
+  entry_owed_ = false;
+  entry_failures_ = 0;
   switch (state) {
-    case PerchState::kInit: {
+    case PerchState::kInit:
       joint_failures_ = gripper_failures_ = 0;
       // A restart may find a servo in alarm or the board in safe start
-      // with errors latched: clear both before judging the arm's pose.
+      // with errors latched: clear both before judging the arm's pose
+      // (best effort: run_state recovers again until they read clean).
       (void)joints_.recover();
       (void)gripper_.recover();
-      break;
-    }
-    case PerchState::kDeploying:
-      if (!require(joints_.set_torque(true), "torque enable refused")) return;
-      command_joints(config_.geometry.deploy);
-      break;
-    case PerchState::kCalibrating:
-      require(gripper_.calibrate(), "calibrate refused");
-      break;
-    case PerchState::kOpening:
-    case PerchState::kUnperching:
-      require(gripper_.open(config_.open_speed), "open refused");
-      break;
-    case PerchState::kClosing:
-      require(gripper_.close(config_.close_speed, config_.close_current_limit_ma), "close refused");
       break;
     case PerchState::kGraspCheck:
       hold_since_us_ = -1;
       break;
-    case PerchState::kStowing:
-      if (!require(gripper_.go_to(config_.stow_gripper_counts, config_.stow_speed),
-                   "gripper stow refused")) {
-        return;
-      }
-      if (!require(joints_.set_torque(true), "torque enable refused")) return;
-      command_joints(config_.geometry.stow);
+    default:
       break;
+  }
+  run_entry_action();
+}
+
+IoResult PerchSequence::entry_action(PerchState state, const char** what) {
+  IoResult io;
+  switch (state) {
+    case PerchState::kDeploying:
+      *what = "torque enable refused";
+      io = joints_.set_torque(true);
+      if (!io.ok()) return io;
+      *what = "joint move refused";
+      status_.joint_goal = config_.geometry.deploy;
+      return joints_.move_to(status_.joint_goal, config_.joint_speed_rad_s);
+    case PerchState::kCalibrating:
+      *what = "calibrate refused";
+      return gripper_.calibrate();
+    case PerchState::kOpening:
+    case PerchState::kUnperching:
+      *what = "open refused";
+      return gripper_.open(config_.open_speed);
+    case PerchState::kClosing:
+      *what = "close refused";
+      return gripper_.close(config_.close_speed, config_.close_current_limit_ma);
+    case PerchState::kStowing:
+      *what = "gripper stow refused";
+      io = gripper_.go_to(config_.stow_gripper_counts, config_.stow_speed);
+      if (!io.ok()) return io;
+      *what = "torque enable refused";
+      io = joints_.set_torque(true);
+      if (!io.ok()) return io;
+      *what = "joint move refused";
+      status_.joint_goal = config_.geometry.stow;
+      return joints_.move_to(status_.joint_goal, config_.joint_speed_rad_s);
+    case PerchState::kPanTilt:
+    case PerchState::kPerched:
+      // The goal was set before entry: a validated pan / tilt command, or
+      // where the joints are when the grip closed (hold them there).
+      *what = "joint move refused";
+      return joints_.move_to(status_.joint_goal, config_.joint_speed_rad_s);
+    case PerchState::kInit:
     case PerchState::kStowed:
     case PerchState::kGripperOpen:
-    case PerchState::kPerched:
-    case PerchState::kPanTilt:
+    case PerchState::kGraspCheck:
     case PerchState::kBackingOff:
     case PerchState::kFault:
       break;
   }
+  return io;
+}
+
+void PerchSequence::run_entry_action() {
+  const char* what = "";
+  const IoResult io = entry_action(status_.state, &what);
+  if (io.ok()) {
+    entry_owed_ = false;
+    return;
+  }
+  // Every entry action is safe to repeat (the same goal, the same open or
+  // close, a calibration restarted), so a packet lost on a noisy line costs
+  // a cycle, not the perch.
+  if (entry_failures_ < 255) ++entry_failures_;
+  if (is_line_error(io) && entry_failures_ < config_.io_failures_to_fault) {
+    entry_owed_ = true;
+    return;
+  }
+  fault(fault_for_io(io), io, what);
 }
 
 void PerchSequence::start_stowing() {
@@ -368,7 +405,8 @@ void PerchSequence::run_command(const PerchCommand& command) {
       enter(PerchState::kUnperching);
       break;
     case CommandKind::kPanTilt:
-      if (command_joints({command.tilt_rad, command.pan_rad})) enter(PerchState::kPanTilt);
+      status_.joint_goal = {command.tilt_rad, command.pan_rad};
+      enter(PerchState::kPanTilt);
       break;
     case CommandKind::kStow:
       start_stowing();
@@ -400,7 +438,8 @@ void PerchSequence::run_command(const PerchCommand& command) {
           enter(PerchState::kUnperching);
           break;
         case PerchState::kPanTilt:
-          if (status_.joints_valid && command_joints(status_.joints.q)) {
+          if (status_.joints_valid) {
+            status_.joint_goal = status_.joints.q;  // stop where the joints are
             enter(PerchState::kPerched);
           }
           break;
@@ -458,6 +497,7 @@ void PerchSequence::run_state() {
     fault(FaultCode::kStateTimeout, {}, "state timed out");
     return;
   }
+  if (entry_owed_) return;  // the state has not started yet
   const GripperReading& g = status_.gripper;
   const bool g_ok = status_.gripper_valid;
   const std::int64_t in_state_us = now_us_ - status_.state_entered_us;
@@ -477,7 +517,8 @@ void PerchSequence::run_state() {
       }
       if (holding_handrail()) {
         // Restarted while perched: keep holding, never let go on our own.
-        if (command_joints(status_.joints.q)) enter(PerchState::kPerched);
+        status_.joint_goal = status_.joints.q;
+        enter(PerchState::kPerched);
       } else if (joints_at(config_.geometry.stow)) {
         enter(PerchState::kStowed);
       } else {

@@ -96,21 +96,13 @@ void SimGripperBoard::run() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       faults = faults_;
-      // The firmware's 1 kHz tick, caught up in whole milliseconds.
-      const std::int64_t steps = std::min<std::int64_t>((now_us - last_us) / 1000, 50);
-      for (std::int64_t k = 0; k < steps; ++k) {
-        step_motor(1e-3, fw_.pwm);
-        const std::uint16_t ma = static_cast<std::uint16_t>(std::lround(current_a_ * 1000.0));
-        gfw_tick(&fw_, static_cast<std::int32_t>(std::lround(position_)), ma,
-                 now_ms - static_cast<std::uint32_t>(steps - 1 - k));
-      }
-      if (steps > 0) last_us += steps * 1000;
-      if (now_us - last_us > 50000) last_us = now_us;  // after a long stall
     }
-    if (!(p.revents & POLLIN)) continue;
-    const ssize_t n = ::read(pty_.master_fd(), rx, sizeof(rx));
-    if (n <= 0) continue;
-    if (faults.echo) line_.send_now(rx, static_cast<std::size_t>(n));
+    // Bytes first, then the tick: on the board the UART interrupt takes a
+    // byte the moment it lands, so a command waiting in the pty after this
+    // thread was descheduled arrived before the tick that catches up, and
+    // must count against the serial timeout as such.
+    const ssize_t n = (p.revents & POLLIN) ? ::read(pty_.master_fd(), rx, sizeof(rx)) : 0;
+    if (n > 0 && faults.echo) line_.send_now(rx, static_cast<std::size_t>(n));
     for (ssize_t k = 0; k < n; ++k) {
       std::uint8_t out[GFW_MAX_REPLY];
       std::size_t out_n = 0;
@@ -125,6 +117,19 @@ void SimGripperBoard::run() {
       line_.reply(out, out_n, now_us, faults);
     }
     line_.send_due(now_us);  // a reply not held back goes out at once
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      // The firmware's 1 kHz tick, caught up in whole milliseconds.
+      const std::int64_t steps = std::min<std::int64_t>((now_us - last_us) / 1000, 50);
+      for (std::int64_t k = 0; k < steps; ++k) {
+        step_motor(1e-3, fw_.pwm);
+        const std::uint16_t ma = static_cast<std::uint16_t>(std::lround(current_a_ * 1000.0));
+        gfw_tick(&fw_, static_cast<std::int32_t>(std::lround(position_)), ma,
+                 now_ms - static_cast<std::uint32_t>(steps - 1 - k));
+      }
+      if (steps > 0) last_us += steps * 1000;
+      if (now_us - last_us > 50000) last_us = now_us;  // after a long stall
+    }
   }
 }
 

@@ -72,6 +72,14 @@ struct FakeGripper final : arm::GripperActuator {
   bool holding = false, closing = false;
   std::uint8_t latched = 0;
   int calibrations = 0, stops = 0, opens = 0, closes = 0;
+  int lost_commands = 0;  // the next this many motion commands are lost on the line
+
+  // A command whose packet was mangled: the board never acted on it.
+  bool lose_command() {
+    if (lost_commands <= 0) return false;
+    --lost_commands;
+    return true;
+  }
 
   void advance() {
     const double dt = 1e-6 * static_cast<double>(clock_.now_us() - last_us_);
@@ -106,6 +114,7 @@ struct FakeGripper final : arm::GripperActuator {
   arm::IoResult motion(double new_target, bool close) {
     advance();
     if (silent) return {arm::IoStatus::kNoReply, arm::Device::kGripper, 0};
+    if (lose_command()) return {arm::IoStatus::kCorrupt, arm::Device::kGripper, 0};
     if (safe_start) return {};  // refused on the board, as the real one does
     target = new_target;
     closing = close;
@@ -135,6 +144,7 @@ struct FakeGripper final : arm::GripperActuator {
     ++calibrations;
     advance();
     if (silent) return {arm::IoStatus::kNoReply, arm::Device::kGripper, 0};
+    if (lose_command()) return {arm::IoStatus::kCorrupt, arm::Device::kGripper, 0};
     if (safe_start) return {};
     calibrated = false;
     calibrating_ = true;

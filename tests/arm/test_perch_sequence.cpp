@@ -3,6 +3,7 @@
 // to its safe state with its reason, grasp retries, a restart while
 // perched, and a randomised run proving no state outlives its timeout.
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 #include "allocation_counter.hpp"
@@ -282,6 +283,29 @@ void test_gripper_faults(void**) {
   }
 }
 
+// A state's entry command lost on the line (a corrupt reply) is sent again
+// on the next cycle; lost twice in a row, the arm faults naming it.
+void test_lost_entry_command_is_resent_then_faults(void**) {
+  {
+    Rig rig;
+    assert_true(rig.run_until(PerchState::kStowed, 1.0));
+    rig.gripper.lost_commands = 1;  // the calibrate after deploying
+    perch(rig);
+    assert_int_equal(rig.gripper.calibrations, 2);
+    assert_int_equal(static_cast<int>(rig.seq.status().fault), static_cast<int>(FaultCode::kNone));
+    rig.approach.at_target = false;
+    rig.gripper.lost_commands = 2;  // both tries of the unperch's open
+    rig.command(CommandKind::kUnperch);
+    assert_true(rig.run_until(PerchState::kFault, 1.0));
+    const arm::ArmStatus& s = rig.seq.status();
+    assert_int_equal(static_cast<int>(s.fault), static_cast<int>(FaultCode::kGripperNoReply));
+    assert_int_equal(static_cast<int>(s.fault_state), static_cast<int>(PerchState::kUnperching));
+    assert_int_equal(static_cast<int>(s.fault_io.status),
+                     static_cast<int>(arm::IoStatus::kCorrupt));
+    assert_non_null(std::strstr(s.fault_text, "open refused"));
+  }
+}
+
 void test_stuck_joint_times_out(void**) {
   Rig rig;
   assert_true(rig.run_until(PerchState::kStowed, 1.0));
@@ -368,6 +392,7 @@ void test_no_state_outlives_its_timeout(void**) {
       if (r == 14 && pick(rng) < 20) rig.joints.stuck = !rig.joints.stuck;
       if (r == 15 && pick(rng) < 20) rig.gripper.silent = !rig.gripper.silent;
       if (r == 16 && pick(rng) < 10) rig.gripper.handrail_counts = pick(rng) < 50 ? 1800 : -1;
+      if (r == 18 && pick(rng) < 30) rig.gripper.lost_commands = 1 + pick(rng) % 2;
       if (r == 17 && pick(rng) < 5) rig.joints.error_bits = rig.joints.error_bits ? 0 : 0x20;
       rig.step();
       const PerchState s = rig.seq.state();
@@ -409,6 +434,7 @@ int main() {
       cmocka_unit_test(test_servo_silent_mid_approach_is_a_fault_naming_it),
       cmocka_unit_test(test_servo_overload_goes_limp_with_the_reason),
       cmocka_unit_test(test_gripper_faults),
+      cmocka_unit_test(test_lost_entry_command_is_resent_then_faults),
       cmocka_unit_test(test_stuck_joint_times_out),
       cmocka_unit_test(test_restart_while_perched_keeps_holding),
       cmocka_unit_test(test_uncalibrated_gripper_is_calibrated_before_stowing),

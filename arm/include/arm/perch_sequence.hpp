@@ -48,12 +48,12 @@ class PerchSequence {
   void run_command(const PerchCommand& command);
   void run_state();
   void enter(PerchState state);
+  IoResult entry_action(PerchState state, const char** what);
+  void run_entry_action();
   void fault(FaultCode code, const IoResult& io, const char* detail);
   void enter_safe_state(bool servo_alarm);
   bool holding_handrail() const;
   bool joints_at(const JointAngles& goal) const;
-  bool command_joints(const JointAngles& goal);
-  bool require(const IoResult& io, const char* what);
   void judge_grasp();
   void start_stowing();
 
@@ -67,6 +67,10 @@ class PerchSequence {
   bool pending_ = false;
   PerchCommand pending_command_;
   std::uint8_t joint_failures_ = 0, gripper_failures_ = 0;
+  // The state's entry commands were lost on the line (no reply, corrupt):
+  // they are sent again each cycle, up to io_failures_to_fault cycles.
+  bool entry_owed_ = false;
+  std::uint8_t entry_failures_ = 0;
   // Where CALIBRATING goes when it finishes.
   PerchState after_calibration_ = PerchState::kStowed;
   std::int64_t hold_since_us_ = -1;  // grasp check: when the hold was first seen
