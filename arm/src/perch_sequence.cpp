@@ -187,9 +187,11 @@ void note_read(const IoResult& r, const Reading& reading, Reading* kept, bool* v
 bool PerchSequence::read_devices() {
   JointReading joints;
   const IoResult jr = joints_.read(&joints);
+
   note_read(jr, joints, &status_.joints, &status_.joints_valid, &joint_failures_);
   GripperReading gripper;
   const IoResult gr = gripper_.read(&gripper);
+
   note_read(gr, gripper, &status_.gripper, &status_.gripper_valid, &gripper_failures_);
   if (status_.state == PerchState::kFault) return jr.ok() && gr.ok();
   if (joint_failures_ >= config_.io_failures_to_fault) {
@@ -492,12 +494,20 @@ void PerchSequence::judge_grasp() {
 
 void PerchSequence::run_state() {
   const PerchState s = status_.state;
+  const std::int64_t entered_us = status_.state_entered_us;
   const int timeout = timeout_ms(s);
-  if (timeout > 0 && now_us_ - status_.state_entered_us > timeout * 1000LL) {
+  const bool overdue = timeout > 0 && now_us_ - entered_us > timeout * 1000LL;
+  // The state gets this cycle's fresh reading before its timeout is
+  // judged: a loop descheduled past the deadline (a stalled host) must
+  // not fault a state that has in fact finished.
+  if (!entry_owed_) advance_state();
+  if (overdue && status_.state == s && status_.state_entered_us == entered_us) {
     fault(FaultCode::kStateTimeout, {}, "state timed out");
-    return;
   }
-  if (entry_owed_) return;  // the state has not started yet
+}
+
+void PerchSequence::advance_state() {
+  const PerchState s = status_.state;
   const GripperReading& g = status_.gripper;
   const bool g_ok = status_.gripper_valid;
   const std::int64_t in_state_us = now_us_ - status_.state_entered_us;

@@ -150,7 +150,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
   Section top(root, "", path, error);
   if (!root.is_object()) return top.fail(root, "(top)", "the configuration must be a JSON object");
   if (!top.only({"lcm_url", "use_case", "camera", "estimator", "arm", "perch", "servos", "ports",
-                 "approach", "arm_rate_hz", "manager_rate_hz"})) {
+                 "approach", "arm_rate_hz", "arm_rt_priority", "manager_rate_hz"})) {
     return false;
   }
   top.text("lcm_url", &c.lcm_url);
@@ -160,6 +160,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
                     "not a Pico Flexx use case (MODE_9_5FPS_2000 ... MODE_5_45FPS_500)");
   }
   top.number("arm_rate_hz", &c.arm_rate_hz, 10.0, 200.0);  // the board's timeout wants >= 10 Hz
+  top.integer("arm_rt_priority", &c.arm_rt_priority, 0, 99);
   top.number("manager_rate_hz", &c.manager_rate_hz, 1.0, 200.0);
 
   if (const JsonValue* v = top.object("camera")) {
@@ -296,7 +297,8 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
   if (const JsonValue* v = top.object("ports")) {
     Section s(*v, "ports", path, error);
     if (!s.only({"servo_port", "servo_baud", "servo_return_delay_us", "servo_margin_us",
-                 "gripper_port", "gripper_baud", "gripper_margin_us"})) {
+                 "gripper_port", "gripper_baud", "gripper_margin_us",
+                 "gripper_serial_timeout_ms"})) {
       return false;
     }
     s.text("servo_port", &c.ports.servo_port);
@@ -306,6 +308,8 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     s.text("gripper_port", &c.ports.gripper_port);
     s.integer("gripper_baud", &c.ports.gripper_baud, 1200, 3000000);
     s.integer("gripper_margin_us", &c.ports.gripper_margin_us, 0, 1000000);
+    // The arm polls the board every cycle: at least two cycles at 10 Hz.
+    s.integer("gripper_serial_timeout_ms", &c.ports.gripper_serial_timeout_ms, 200, 16000);
     if (!s.ok()) return false;
   }
   if (const JsonValue* v = top.object("approach")) {

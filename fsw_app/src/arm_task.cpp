@@ -5,11 +5,13 @@
 namespace fsw_app {
 
 ArmTask::ArmTask(LcmHub& hub, arm::JointActuators& joints, arm::GripperActuator& gripper,
-                 const arm::PerchConfig& config, const hal::Clock& clock, double rate_hz)
+                 const arm::PerchConfig& config, const hal::Clock& clock, double rate_hz,
+                 int rt_priority)
     : hub_(hub),
       clock_(clock),
       sequence_(joints, gripper, config),
       period_us_(static_cast<std::int64_t>(1e6 / rate_hz)),
+      rt_priority_(rt_priority),
       state_pub_(hub, channel::kArmState) {
   hub_.subscribe(channel::kPerchCommand, &command_box_);
   hub_.subscribe(channel::kApproachStatus, &approach_box_);
@@ -21,7 +23,8 @@ ArmTask::~ArmTask() {
 }
 
 void ArmTask::start() {
-  thread_.start(period_us_, [this] { cycle(); });
+  thread_.start(
+      period_us_, [this] { cycle(); }, rt_priority_);
 }
 
 void ArmTask::stop() {

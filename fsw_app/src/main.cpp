@@ -11,6 +11,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -35,6 +36,7 @@
 #include "gripper/gripper_board.hpp"
 #include "hal/linux_serial_port.hpp"
 #include "hal/pcd_replay_camera.hpp"
+#include "hal/realtime.hpp"
 #include "hal/use_case.hpp"
 #ifdef HRP_WITH_SIM
 #include "hil_world.hpp"
@@ -294,10 +296,26 @@ int main(int argc, char** argv) {
   }
   dynamixel::BusConfig bus_cfg;
   bus_cfg.return_delay_us = cfg.ports.servo_return_delay_us;
-  bus_cfg.margin_us = opt.hal == "sim" ? 25000 : cfg.ports.servo_margin_us;
+  // The simulated devices are threads of this process on a host that runs
+  // everything else too: their replies get a wider margin than the wire.
+  // The simulated devices are threads of this process on a host that may
+  // be shared (a virtual machine with steal time): their replies get a
+  // wider margin than the wire needs, and the board a longer serial
+  // timeout, so that a stalled host does not pass for a failed line.
+  const bool sim = opt.hal == "sim";
+  bus_cfg.margin_us = sim ? 100000 : cfg.ports.servo_margin_us;
   dynamixel::Bus bus(servo_serial, clock, bus_cfg);
-  gripper::GripperBoard board(gripper_serial, clock, 2,
-                              opt.hal == "sim" ? 30000 : cfg.ports.gripper_margin_us);
+  gripper::GripperBoard board(gripper_serial, clock, 2, sim ? 120000 : cfg.ports.gripper_margin_us);
+  const std::uint32_t serial_timeout_ms =
+      sim ? std::max<std::uint32_t>(cfg.ports.gripper_serial_timeout_ms, 2000)
+          : cfg.ports.gripper_serial_timeout_ms;
+  if (const gripper::Status s = board.set_timeout_ms(static_cast<int>(serial_timeout_ms));
+      s != gripper::Status::kOk) {
+    std::fprintf(stderr,
+                 "fsw_app: gripper board on %s: could not set its serial timeout to %u ms (%s); "
+                 "it keeps its own (500 ms after a reset)\n",
+                 gripper_port.c_str(), serial_timeout_ms, gripper::to_string(s));
+  }
   arm_io::Ax12Joints joints(bus, cfg.servos);
   arm_io::GripperActuator gripper(board);
 
@@ -319,7 +337,8 @@ int main(int argc, char** argv) {
   est_cfg.max_width = max_w;
   est_cfg.max_height = max_h;
   fsw_app::EstimatorTask estimator_task(hub, camera_task, ring, est_cfg, clock);
-  fsw_app::ArmTask arm_task(hub, joints, gripper, cfg.perch, clock, cfg.arm_rate_hz);
+  fsw_app::ArmTask arm_task(hub, joints, gripper, cfg.perch, clock, cfg.arm_rate_hz,
+                            cfg.arm_rt_priority);
   const Eigen::Vector3d p_body_grasp =
       arm::forward_kinematics(cfg.perch.geometry, cfg.perch.geometry.grip).translation();
   fsw_app::PerchManager manager(hub, cfg.approach, p_body_grasp, clock, cfg.manager_rate_hz);
@@ -355,9 +374,20 @@ int main(int argc, char** argv) {
   std::size_t next_fault = 0;
 #endif
   int rc = 0;
+  bool realtime_reported = false;
   while (!g_stop && !done) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     const double t = seconds();
+    if (!realtime_reported && cfg.arm_rt_priority > 0 && arm_task.cycle_stats().cycles > 0) {
+      realtime_reported = true;
+      const hal::RealtimeStatus rt = arm_task.cycle_stats().realtime;
+      if (rt != hal::RealtimeStatus::kGranted) {
+        std::fprintf(stderr,
+                     "fsw_app: arm loop: SCHED_FIFO priority %d %s; it runs under the normal "
+                     "scheduler (run as root, grant CAP_SYS_NICE, or set an rtprio limit)\n",
+                     cfg.arm_rt_priority, hal::to_string(rt));
+      }
+    }
     const bool have_arm = arm_box.read(&arm) != 0;
     approach_box.read(&approach);
     if (opt.perch && !commanded && have_arm && arm.state == hrp::arm_state_t::STOWED) {
@@ -413,6 +443,7 @@ int main(int argc, char** argv) {
     }
   }
   if (tty) std::fprintf(stderr, "\n");
+  const fsw_app::CycleStats arm_stats = arm_task.cycle_stats();
   manager.stop();
   arm_task.stop();
   (void)camera->stop_capture();
@@ -450,6 +481,17 @@ int main(int argc, char** argv) {
     std::printf("  deadline misses     %lld (budget %d us; processing median %d us, max %d us)\n",
                 static_cast<long long>(health.deadline_misses), health.budget_us,
                 health.processing_median_us, health.processing_max_us);
+    std::printf(
+        "  arm loop            %lld cycles, %lld overruns, longest gap %.0f ms, "
+        "longest cycle %.0f ms, real-time %s\n",
+        static_cast<long long>(arm_stats.cycles), static_cast<long long>(arm_stats.overruns),
+        1e-3 * arm_stats.longest_gap_us, 1e-3 * arm_stats.longest_cycle_us,
+        hal::to_string(arm_stats.realtime));
+    const dynamixel::BusCounters& bc = bus.counters();
+    std::printf(
+        "  servo bus           %u transactions, %u retries, %u timeouts, %u bad checksums\n",
+        bc.transactions, bc.retries, bc.timeouts, bc.bad_checksums);
+    std::printf("  gripper board       %u retries\n", board.retries_used());
     if (!opt.log.empty())
       std::printf("  LCM log             %s (%lld messages)\n", opt.log.c_str(),
                   static_cast<long long>(log.events));
@@ -461,21 +503,24 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "fsw_app: %s: cannot write the summary\n", opt.summary_json.c_str());
       return 1;
     }
-    std::fprintf(f,
-                 "{\"seed\": %llu, \"scenario\": \"%s\", \"perched\": %s, \"success\": %s, "
-                 "\"arm_state\": \"%s\", \"fault\": \"%s\", \"fault_text\": \"%s\", "
-                 "\"time_to_perch_s\": %.2f, \"grasp_error_m\": %.4f, \"frames_received\": %lld, "
-                 "\"frames_processed\": %lld, \"frames_dropped\": %lld, \"frames_corrupt\": %lld, "
-                 "\"deadline_misses\": %lld, \"processing_median_us\": %d}\n",
-                 static_cast<unsigned long long>(opt.seed), opt.scenario.c_str(),
-                 perched ? "true" : "false", success ? "true" : "false", arm.state_name.c_str(),
-                 arm.fault_name.c_str(), arm.fault_text.c_str(),
-                 perched ? perched_s - perch_cmd_s : -1.0, grasp_error,
-                 static_cast<long long>(health.frames_received),
-                 static_cast<long long>(health.frames_processed),
-                 static_cast<long long>(health.frames_dropped),
-                 static_cast<long long>(health.frames_corrupt),
-                 static_cast<long long>(health.deadline_misses), health.processing_median_us);
+    std::fprintf(
+        f,
+        "{\"seed\": %llu, \"scenario\": \"%s\", \"perched\": %s, \"success\": %s, "
+        "\"arm_state\": \"%s\", \"fault\": \"%s\", \"fault_text\": \"%s\", "
+        "\"time_to_perch_s\": %.2f, \"grasp_error_m\": %.4f, \"frames_received\": %lld, "
+        "\"frames_processed\": %lld, \"frames_dropped\": %lld, \"frames_corrupt\": %lld, "
+        "\"deadline_misses\": %lld, \"processing_median_us\": %d, \"arm_cycles\": %lld, "
+        "\"arm_overruns\": %lld, \"arm_longest_gap_ms\": %.1f, \"arm_realtime\": \"%s\"}\n",
+        static_cast<unsigned long long>(opt.seed), opt.scenario.c_str(), perched ? "true" : "false",
+        success ? "true" : "false", arm.state_name.c_str(), arm.fault_name.c_str(),
+        arm.fault_text.c_str(), perched ? perched_s - perch_cmd_s : -1.0, grasp_error,
+        static_cast<long long>(health.frames_received),
+        static_cast<long long>(health.frames_processed),
+        static_cast<long long>(health.frames_dropped),
+        static_cast<long long>(health.frames_corrupt),
+        static_cast<long long>(health.deadline_misses), health.processing_median_us,
+        static_cast<long long>(arm_stats.cycles), static_cast<long long>(arm_stats.overruns),
+        1e-3 * arm_stats.longest_gap_us, hal::to_string(arm_stats.realtime));
     std::fclose(f);
   }
   return rc;

@@ -39,7 +39,7 @@ struct Rig {
   hal::MonotonicClock clock;
   hal::LinuxSerialPort servo_port, gripper_port;
   dynamixel::Bus bus{servo_port, clock};
-  gripper::GripperBoard gripper_board{gripper_port, clock, 2, 60000};
+  gripper::GripperBoard gripper_board{gripper_port, clock, 2, 150000};
   arm_io::Ax12Joints joints{bus};
   arm_io::GripperActuator gripper{gripper_board};
   arm::PerchConfig config;
@@ -52,6 +52,9 @@ struct Rig {
   static arm::PerchConfig make_config() {
     arm::PerchConfig c;
     c.joint_speed_rad_s = 2.0;  // 20 rpm: the flown arm's limit
+    // One more failed cycle than in flight before a line fault: the
+    // simulators share this process and a loaded 2-core host with it.
+    c.io_failures_to_fault = 3;
     return c;
   }
   Rig() {
@@ -63,11 +66,12 @@ struct Rig {
                      static_cast<int>(hal::SerialStatus::kOk));
     assert_int_equal(static_cast<int>(gripper_port.open(board.path(), 115200, &error)),
                      static_cast<int>(hal::SerialStatus::kOk));
-    // Scheduling on a 2-core machine shared with the simulators: a generous
-    // reply margin (the bus's own tests cover tight timing).
+    // Replies get a margin for a shared virtual machine, where this process
+    // has been seen to stall for hundreds of ms (steal time): the bus's own
+    // tests cover the timing; these cover the sequence.
     dynamixel::BusConfig cfg;
     cfg.return_delay_us = 500;
-    cfg.margin_us = 25000;
+    cfg.margin_us = 150000;
     bus.set_config(cfg);
     board.set_handrail_raw(kOpenStopRaw + 1800);
     // The board's serial timeout (500 ms in flight) stretched: on a shared

@@ -306,6 +306,20 @@ void test_lost_entry_command_is_resent_then_faults(void**) {
   }
 }
 
+// The loop descheduled past a state's deadline (a stalled host) while the
+// state in fact finished: the fresh reading decides, not the clock.
+void test_a_stall_past_the_deadline_is_judged_on_a_fresh_reading(void**) {
+  Rig rig;
+  assert_true(rig.run_until(PerchState::kStowed, 1.0));
+  rig.command(CommandKind::kPerch);
+  rig.step();
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kDeploying));
+  rig.clock.advance_us(1000LL * rig.seq.timeout_ms(PerchState::kDeploying) + 1000000);
+  rig.step();  // the joints got there meanwhile
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kCalibrating));
+  assert_int_equal(static_cast<int>(rig.seq.status().fault), static_cast<int>(FaultCode::kNone));
+}
+
 void test_stuck_joint_times_out(void**) {
   Rig rig;
   assert_true(rig.run_until(PerchState::kStowed, 1.0));
@@ -435,6 +449,7 @@ int main() {
       cmocka_unit_test(test_servo_overload_goes_limp_with_the_reason),
       cmocka_unit_test(test_gripper_faults),
       cmocka_unit_test(test_lost_entry_command_is_resent_then_faults),
+      cmocka_unit_test(test_a_stall_past_the_deadline_is_judged_on_a_fresh_reading),
       cmocka_unit_test(test_stuck_joint_times_out),
       cmocka_unit_test(test_restart_while_perched_keeps_holding),
       cmocka_unit_test(test_uncalibrated_gripper_is_calibrated_before_stowing),

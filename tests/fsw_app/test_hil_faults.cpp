@@ -92,13 +92,38 @@ Outcome run(const std::string& scenario, std::vector<std::string> extra) {
     fail();
   }
   std::remove(summary.c_str());
-  std::printf("  %s: %s %s %s\n", scenario.c_str(), out.text("arm_state").c_str(),
-              out.text("fault").c_str(), out.text("fault_text").c_str());
+  std::printf("  %s: %s %s %s (arm loop: longest gap %.0f ms)\n", scenario.c_str(),
+              out.text("arm_state").c_str(), out.text("fault").c_str(),
+              out.text("fault_text").c_str(), out.number("arm_longest_gap_ms"));
   return out;
 }
 
+// A run is real time on a host that may be shared: when its outcome is
+// not the expected one and the program's own figures show its arm loop was
+// stalled (a gap far past its 50 ms period), the host is to blame, not the
+// code under test; the run is repeated (at most twice), and says so. A
+// wrong outcome with the loop on time fails at once.
+constexpr double kHostStallMs = 300.0;
+
+template <typename Expect>
+Outcome run_expecting(const std::string& scenario, const std::vector<std::string>& extra,
+                      Expect expected) {
+  Outcome o = run(scenario, extra);
+  for (int again = 0; again < 2 && !expected(o) && o.number("arm_longest_gap_ms") > kHostStallMs;
+       ++again) {
+    std::printf("  NOTE: the arm loop stalled for %.0f ms (host); running this case again\n",
+                o.number("arm_longest_gap_ms"));
+    o = run(scenario, extra);
+  }
+  return o;
+}
+
+bool perched_within_1cm(const Outcome& o) {
+  return o.flag("perched") && o.flag("success");
+}
+
 void test_clean_perch(void**) {
-  const Outcome o = run("approach-iss", {"--seed", "2"});
+  const Outcome o = run_expecting("approach-iss", {"--seed", "2"}, perched_within_1cm);
   assert_true(o.flag("perched"));
   assert_true(o.flag("success"));
   assert_int_equal(o.exit_status, 0);
@@ -107,25 +132,31 @@ void test_clean_perch(void**) {
 }
 
 void test_servo_stops_answering_mid_approach(void**) {
-  const Outcome o = run("approach-iss", {"--seed", "3", "--fault", "servo-silent@0.5"});
+  const Outcome o =
+      run_expecting("approach-iss", {"--seed", "3", "--fault", "servo-silent@0.5"},
+                    [](const Outcome& r) { return r.text("fault") == "SERVO_NO_REPLY"; });
   assert_string_equal(o.text("arm_state").c_str(), "FAULT");
   assert_string_equal(o.text("fault").c_str(), "SERVO_NO_REPLY");
   assert_int_equal(o.exit_status, 1);
 }
 
 void test_gripper_over_current(void**) {
-  const Outcome o = run("approach-iss", {"--seed", "4", "--fault", "gripper-overcurrent@1"});
+  const Outcome o =
+      run_expecting("approach-iss", {"--seed", "4", "--fault", "gripper-overcurrent@1"},
+                    [](const Outcome& r) { return r.text("fault") == "GRIPPER_OVER_CURRENT"; });
   assert_string_equal(o.text("arm_state").c_str(), "FAULT");
   assert_string_equal(o.text("fault").c_str(), "GRIPPER_OVER_CURRENT");
 }
 
 void test_handrail_occluded_for_a_second_is_ridden_out(void**) {
-  const Outcome o = run("approach-iss", {"--seed", "5", "--fault", "occlude@1"});
+  const Outcome o =
+      run_expecting("approach-iss", {"--seed", "5", "--fault", "occlude@1"}, perched_within_1cm);
   assert_true(o.flag("perched"));
 }
 
 void test_burst_of_corrupt_frames_is_dropped_and_counted(void**) {
-  const Outcome o = run("approach-iss", {"--seed", "6", "--fault", "corrupt-frames@1"});
+  const Outcome o = run_expecting("approach-iss", {"--seed", "6", "--fault", "corrupt-frames@1"},
+                                  perched_within_1cm);
   assert_true(o.flag("perched"));
   assert_int_equal(static_cast<int>(o.number("frames_corrupt")), 5);
 }
@@ -133,7 +164,9 @@ void test_burst_of_corrupt_frames_is_dropped_and_counted(void**) {
 void test_estimator_over_budget(void**) {
   // A 50 us budget: every frame runs over and is reported so, with no
   // pose; the approach never sees the handrail and ends HANDRAIL_LOST.
-  const Outcome o = run("approach-iss", {"--seed", "7", "--budget-us", "50"});
+  const Outcome o =
+      run_expecting("approach-iss", {"--seed", "7", "--budget-us", "50"},
+                    [](const Outcome& r) { return r.text("fault") == "HANDRAIL_LOST"; });
   assert_string_equal(o.text("fault").c_str(), "HANDRAIL_LOST");
   assert_true(o.number("deadline_misses") > 3);
 }

@@ -47,6 +47,7 @@ class PerchSequence {
   bool check_device_faults();
   void run_command(const PerchCommand& command);
   void run_state();
+  void advance_state();
   void enter(PerchState state);
   IoResult entry_action(PerchState state, const char** what);
   void run_entry_action();

@@ -22,6 +22,9 @@ struct PortsConfig {
   std::string gripper_port = "/dev/ttyO1";
   std::uint32_t gripper_baud = 115200;
   std::uint32_t gripper_margin_us = 5000;
+  // The board stops its motor and goes to safe start when no valid command
+  // came for this long (sent to the board at start; 0 turns it off).
+  std::uint32_t gripper_serial_timeout_ms = 500;
 };
 
 struct ApproachConfig {
@@ -51,6 +54,12 @@ struct AppConfig {
   PortsConfig ports;
   ApproachConfig approach;
   double arm_rate_hz = 20.0;
+  // SCHED_FIFO priority of the arm's control loop (0: the normal
+  // scheduler). On the robot the servos' replies and the gripper board's
+  // serial timeout should not wait behind the estimator; off by default
+  // until measured on the BeagleBone's kernel (the summary reports the
+  // loop's longest gap either way).
+  int arm_rt_priority = 0;
   double manager_rate_hz = 20.0;
 
   static Eigen::Isometry3d default_T_body_cam();

@@ -19,7 +19,8 @@ namespace fsw_app {
 class ArmTask {
  public:
   ArmTask(LcmHub& hub, arm::JointActuators& joints, arm::GripperActuator& gripper,
-          const arm::PerchConfig& config, const hal::Clock& clock, double rate_hz);
+          const arm::PerchConfig& config, const hal::Clock& clock, double rate_hz,
+          int rt_priority = 0);
   ~ArmTask();
 
   void start();
@@ -29,6 +30,8 @@ class ArmTask {
 
   const arm::PerchSequence& sequence() const { return sequence_; }
   const hrp::arm_state_t& last_state() const { return state_; }
+  // Whether the loop ran on time (and under which scheduler).
+  CycleStats cycle_stats() const { return thread_.stats(); }
 
  private:
   void fill_state();
@@ -37,6 +40,7 @@ class ArmTask {
   const hal::Clock& clock_;
   arm::PerchSequence sequence_;
   std::int64_t period_us_;
+  int rt_priority_;
   Mailbox<hrp::perch_command_t> command_box_;
   Mailbox<hrp::approach_status_t> approach_box_;
   Publisher<hrp::arm_state_t> state_pub_;
