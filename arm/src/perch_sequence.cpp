@@ -187,11 +187,9 @@ void note_read(const IoResult& r, const Reading& reading, Reading* kept, bool* v
 bool PerchSequence::read_devices() {
   JointReading joints;
   const IoResult jr = joints_.read(&joints);
-
   note_read(jr, joints, &status_.joints, &status_.joints_valid, &joint_failures_);
   GripperReading gripper;
   const IoResult gr = gripper_.read(&gripper);
-
   note_read(gr, gripper, &status_.gripper, &status_.gripper_valid, &gripper_failures_);
   if (status_.state == PerchState::kFault) return jr.ok() && gr.ok();
   if (joint_failures_ >= config_.io_failures_to_fault) {

@@ -296,8 +296,6 @@ int main(int argc, char** argv) {
   }
   dynamixel::BusConfig bus_cfg;
   bus_cfg.return_delay_us = cfg.ports.servo_return_delay_us;
-  // The simulated devices are threads of this process on a host that runs
-  // everything else too: their replies get a wider margin than the wire.
   // The simulated devices are threads of this process on a host that may
   // be shared (a virtual machine with steal time): their replies get a
   // wider margin than the wire needs, and the board a longer serial
