@@ -103,7 +103,7 @@ Outcome run(const std::string& scenario, std::vector<std::string> extra) {
 // stalled (a gap far past its 50 ms period), the host is to blame, not the
 // code under test; the run is repeated (at most twice), and says so. A
 // wrong outcome with the loop on time fails at once.
-constexpr double kHostStallMs = 300.0;
+constexpr double kHostStallMs = 150.0;  // three periods; on time it stays under 80 ms
 
 template <typename Expect>
 Outcome run_expecting(const std::string& scenario, const std::vector<std::string>& extra,
