@@ -4,7 +4,16 @@
 
 namespace fsw_app {
 
+void CameraTask::note_capture_time(std::int64_t capture_time_us) {
+  if (last_capture_us_ >= 0 && capture_time_us > last_capture_us_) {
+    const std::int64_t gap_us = capture_time_us - last_capture_us_;
+    if (gap_us > longest_gap_us_.load()) longest_gap_us_.store(gap_us);
+  }
+  if (capture_time_us > last_capture_us_) last_capture_us_ = capture_time_us;
+}
+
 void CameraTask::on_new_data(const hal::DepthFrame& frame) {
+  note_capture_time(frame.capture_time_us);
   if (frame.points == nullptr || frame.width == 0 || frame.height == 0 ||
       frame.width > max_width_ || frame.height > max_height_ ||
       ring_.push(frame) != RingStatus::kOk) {

@@ -43,7 +43,7 @@ void EstimatorTask::stop() {
 }
 
 EstimatorCounters EstimatorTask::counters() const {
-  return {processed_.load(), misses_.load(), found_.load()};
+  return {processed_.load(), misses_.load(), found_.load(), longest_latency_us_.load()};
 }
 
 void EstimatorTask::note_time(std::int32_t us) {
@@ -70,6 +70,8 @@ bool EstimatorTask::process_next(int timeout_ms) {
   const estimator::HandrailDetection d = detector_.detect(cloud);
   fill_estimate(d);
   estimate_pub_.publish(estimate_);
+  const std::int64_t latency_us = estimate_.utime - frame.capture_time_us;
+  if (latency_us > longest_latency_us_.load()) longest_latency_us_.store(latency_us);
   processed_.fetch_add(1);
   if (d.status == estimator::DetectStatus::kDeadlineMissed) misses_.fetch_add(1);
   if (d.status == estimator::DetectStatus::kFound) found_.fetch_add(1);

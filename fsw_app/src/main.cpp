@@ -442,6 +442,9 @@ int main(int argc, char** argv) {
   }
   if (tty) std::fprintf(stderr, "\n");
   const fsw_app::CycleStats arm_stats = arm_task.cycle_stats();
+  const fsw_app::EstimatorCounters est_stats = estimator_task.counters();
+  const double camera_gap_ms = 1e-3 * static_cast<double>(camera_task.longest_gap_us());
+  const double latency_ms = 1e-3 * static_cast<double>(est_stats.longest_latency_us);
   manager.stop();
   arm_task.stop();
   (void)camera->stop_capture();
@@ -485,6 +488,10 @@ int main(int argc, char** argv) {
         static_cast<long long>(arm_stats.cycles), static_cast<long long>(arm_stats.overruns),
         1e-3 * arm_stats.longest_gap_us, 1e-3 * arm_stats.longest_cycle_us,
         hal::to_string(arm_stats.realtime));
+    std::printf(
+        "  frame pipeline      longest gap between frames %.0f ms, longest capture to "
+        "estimate %.0f ms\n",
+        camera_gap_ms, latency_ms);
     const dynamixel::BusCounters& bc = bus.counters();
     std::printf(
         "  servo bus           %u transactions, %u retries, %u timeouts, %u bad checksums\n",
@@ -501,24 +508,26 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "fsw_app: %s: cannot write the summary\n", opt.summary_json.c_str());
       return 1;
     }
-    std::fprintf(
-        f,
-        "{\"seed\": %llu, \"scenario\": \"%s\", \"perched\": %s, \"success\": %s, "
-        "\"arm_state\": \"%s\", \"fault\": \"%s\", \"fault_text\": \"%s\", "
-        "\"time_to_perch_s\": %.2f, \"grasp_error_m\": %.4f, \"frames_received\": %lld, "
-        "\"frames_processed\": %lld, \"frames_dropped\": %lld, \"frames_corrupt\": %lld, "
-        "\"deadline_misses\": %lld, \"processing_median_us\": %d, \"arm_cycles\": %lld, "
-        "\"arm_overruns\": %lld, \"arm_longest_gap_ms\": %.1f, \"arm_realtime\": \"%s\"}\n",
-        static_cast<unsigned long long>(opt.seed), opt.scenario.c_str(), perched ? "true" : "false",
-        success ? "true" : "false", arm.state_name.c_str(), arm.fault_name.c_str(),
-        arm.fault_text.c_str(), perched ? perched_s - perch_cmd_s : -1.0, grasp_error,
-        static_cast<long long>(health.frames_received),
-        static_cast<long long>(health.frames_processed),
-        static_cast<long long>(health.frames_dropped),
-        static_cast<long long>(health.frames_corrupt),
-        static_cast<long long>(health.deadline_misses), health.processing_median_us,
-        static_cast<long long>(arm_stats.cycles), static_cast<long long>(arm_stats.overruns),
-        1e-3 * arm_stats.longest_gap_us, hal::to_string(arm_stats.realtime));
+    std::fprintf(f,
+                 "{\"seed\": %llu, \"scenario\": \"%s\", \"perched\": %s, \"success\": %s, "
+                 "\"arm_state\": \"%s\", \"fault\": \"%s\", \"fault_text\": \"%s\", "
+                 "\"time_to_perch_s\": %.2f, \"grasp_error_m\": %.4f, \"frames_received\": %lld, "
+                 "\"frames_processed\": %lld, \"frames_dropped\": %lld, \"frames_corrupt\": %lld, "
+                 "\"deadline_misses\": %lld, \"processing_median_us\": %d, \"arm_cycles\": %lld, "
+                 "\"arm_overruns\": %lld, \"arm_longest_gap_ms\": %.1f, \"arm_realtime\": \"%s\", "
+                 "\"camera_longest_gap_ms\": %.1f, \"estimator_longest_latency_ms\": %.1f}\n",
+                 static_cast<unsigned long long>(opt.seed), opt.scenario.c_str(),
+                 perched ? "true" : "false", success ? "true" : "false", arm.state_name.c_str(),
+                 arm.fault_name.c_str(), arm.fault_text.c_str(),
+                 perched ? perched_s - perch_cmd_s : -1.0, grasp_error,
+                 static_cast<long long>(health.frames_received),
+                 static_cast<long long>(health.frames_processed),
+                 static_cast<long long>(health.frames_dropped),
+                 static_cast<long long>(health.frames_corrupt),
+                 static_cast<long long>(health.deadline_misses), health.processing_median_us,
+                 static_cast<long long>(arm_stats.cycles),
+                 static_cast<long long>(arm_stats.overruns), 1e-3 * arm_stats.longest_gap_us,
+                 hal::to_string(arm_stats.realtime), camera_gap_ms, latency_ms);
     std::fclose(f);
   }
   return rc;

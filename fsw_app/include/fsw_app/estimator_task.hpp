@@ -36,6 +36,9 @@ struct EstimatorTaskConfig {
 
 struct EstimatorCounters {
   std::uint64_t processed = 0, deadline_misses = 0, found = 0;
+  // The longest time from a frame's capture to its published result: a
+  // host that stalls the estimator thread shows here.
+  std::int64_t longest_latency_us = 0;
 };
 
 class EstimatorTask {
@@ -88,6 +91,7 @@ class EstimatorTask {
   std::array<std::int32_t, kWindow> times_{};
   int n_times_ = 0, next_time_ = 0;
   std::atomic<std::uint64_t> processed_{0}, misses_{0}, found_{0};
+  std::atomic<std::int64_t> longest_latency_us_{0};
   std::int64_t last_health_us_ = 0;
   std::atomic<bool> running_{false};
   std::thread thread_;
