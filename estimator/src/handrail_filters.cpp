@@ -72,8 +72,10 @@ struct RaisedRun {
   int last = -1;
 };
 
+// An invalid pixel's wall distance is -infinity: one load and one
+// comparison judge it.
 bool is_raised(const Workspace& ws, std::int32_t i, float raised_min_m) {
-  return (ws.flags[i] & kFlagValid) && ws.signed_distance_m[i] >= raised_min_m;
+  return ws.signed_distance_m[i] >= raised_min_m;
 }
 
 // The whole raised run through pixel `k` of a line of `n` pixels starting
@@ -81,20 +83,28 @@ bool is_raised(const Workspace& ws, std::int32_t i, float raised_min_m) {
 // between its two outermost raised pixels, plus one pixel's footprint since
 // each outermost pixel centre lies half a pixel inside the silhouette; and
 // its highest point above the wall. A run that reaches the image's edge has
-// no known width. Measured once per run: every pixel of a run shares it.
+// no known width. Measured once per run (every pixel of a run shares it),
+// in one walk each way that also finds the peak.
 RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, std::int32_t base,
                              int stride, int n, int k, float raised_min_m, float pixel_angle) {
+  const float* distance_m = ws.signed_distance_m.get() + base;
   RaisedRun run;
+  // Pixel k itself may sit below the raised height (let into the gap set
+  // by its noise); it belongs to its run all the same.
+  run.peak_m = std::max(0.0f, distance_m[k * stride]);
   run.first = k;
-  while (run.first > 0 && is_raised(ws, base + (run.first - 1) * stride, raised_min_m)) {
+  while (run.first > 0) {
+    const float s = distance_m[(run.first - 1) * stride];
+    if (!(s >= raised_min_m)) break;
+    run.peak_m = std::max(run.peak_m, s);
     --run.first;
   }
   run.last = k;
-  while (run.last < n - 1 && is_raised(ws, base + (run.last + 1) * stride, raised_min_m)) {
+  while (run.last < n - 1) {
+    const float s = distance_m[(run.last + 1) * stride];
+    if (!(s >= raised_min_m)) break;
+    run.peak_m = std::max(run.peak_m, s);
     ++run.last;
-  }
-  for (int j = run.first; j <= run.last; ++j) {
-    run.peak_m = std::max(run.peak_m, ws.signed_distance_m[base + j * stride]);
   }
   if (run.first == 0 || run.last == n - 1) return run;
   const CloudPoint& a = cloud.points[base + run.first * stride];
@@ -168,54 +178,6 @@ class RunCache {
 };
 
 }  // namespace
-
-std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels) {
-  const float lo = gap_min_m(cfg), hi = gap_max_m(cfg);
-  const float nx = wall.normal.x(), ny = wall.normal.y(), nz = wall.normal.z(), d = wall.d;
-  const float min_range = cfg.min_range_m, max_range = cfg.max_range_m;
-  const std::size_t n = cloud.size();
-  // The one pass over every pixel, so it does all per-pixel work at once:
-  // validity, the flags, the distance to the wall, and the gap list.
-  // Invalid pixels are scattered over a ToF frame, so the loop has no
-  // branches: it writes every index and advances the list's count only
-  // when the pixel belongs (the list has a slot per pixel). An invalid
-  // pixel's distance is written too (possibly NaN) but every reader checks
-  // the valid flag first.
-  // Everything the loop reads is in locals: its byte-sized flag stores
-  // could alias any member, which would force reloads every pixel.
-  const CloudPoint* points = cloud.points;
-  float* distance_out = ws.signed_distance_m.get();
-  std::uint8_t* flags_out = ws.flags.get();
-  std::int32_t* gap_out = ws.gap.begin();
-  const float plane_inlier = cfg.plane_inlier_m, wall_tolerance = cfg.wall_tolerance_m;
-  std::size_t valid_count = 0, gap_count = 0;
-  std::uint32_t plane_inliers = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const CloudPoint& p = points[k];
-    const float s = nx * p.x_m + ny * p.y_m + nz * p.z_m + d;
-    // is_usable_point() in fewer steps: a NaN or infinite coordinate makes
-    // s NaN (s == s fails), and the range test (min_range > 0) rejects a
-    // NaN, infinite or non-positive z.
-    const bool valid = (p.confidence != 0) & (p.z_m >= min_range) & (p.z_m <= max_range) & (s == s);
-    distance_out[k] = s;
-    const bool on_plane = valid & (std::fabs(s) < plane_inlier);
-    const bool on_wall = valid & (std::fabs(s) < wall_tolerance);
-    // A noisy pixel gets a wider window, by twice its own standard deviation.
-    const float widen = 2.0f * clamp_noise(p.noise_m);
-    const bool in_gap = valid & (s >= lo - widen) & (s <= hi + widen);
-    flags_out[k] =
-        static_cast<std::uint8_t>((valid ? kFlagValid : 0) | (on_plane ? kFlagPlane : 0) |
-                                  (in_gap ? kFlagGap : 0) | (on_wall ? kFlagWall : 0));
-    valid_count += valid ? 1u : 0u;
-    gap_out[gap_count] = static_cast<std::int32_t>(k);
-    gap_count += in_gap ? 1u : 0u;
-    plane_inliers += on_plane ? 1u : 0u;
-  }
-  ws.gap.set_size(gap_count);
-  *valid_pixels = static_cast<std::uint32_t>(valid_count);
-  return plane_inliers;
-}
 
 void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
                       const PixelScale& scale, Workspace& ws) {

@@ -58,7 +58,7 @@ struct Workspace {
   explicit Workspace(std::size_t max_pixels);
 
   std::size_t max_pixels;
-  std::unique_ptr<float[]> signed_distance_m;  // to the wall; only for kFlagValid pixels
+  std::unique_ptr<float[]> signed_distance_m;  // to the wall; -infinity where not kFlagValid
   std::unique_ptr<std::uint8_t[]> flags;       // PixelFlag bits
   std::unique_ptr<float[]> line_t_m;           // position along a line
   IndexList sample;  // valid pixels at a fixed stride, for the wall and the pixel scale

@@ -1,0 +1,121 @@
+// The gap distance test (eq. 1), the detector's one pass over every pixel.
+// It is the frame's largest cost after the cloud has been streamed in, so
+// it works on four pixels at a time with the compiler's portable 128-bit
+// vectors (SSE2 on the host, NEON on the BeagleBone's Cortex-A8): the
+// same source, no intrinsics, and a scalar pass for the last few pixels.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "estimator/handrail_filters.hpp"
+
+namespace estimator {
+namespace {
+
+typedef float Floats4 __attribute__((vector_size(16)));
+typedef std::int32_t Ints4 __attribute__((vector_size(16)));
+
+// What the pass needs of the wall and the configuration, once per frame.
+struct GapTestLimits {
+  float nx, ny, nz, d;
+  float min_range_m, max_range_m;
+  float gap_lo_m, gap_hi_m;  // eq. 1's window on the signed wall distance
+  float plane_inlier_m, wall_tolerance_m;
+};
+
+// A pixel's noise, bounded to [0, 2 cm]; NaN counts as 0 (comparisons with
+// NaN are false), so no bad value can open the windows.
+float clamp_noise(float noise_m) {
+  const float positive = noise_m > 0.0f ? noise_m : 0.0f;
+  return positive < 0.02f ? positive : 0.02f;
+}
+
+std::uint8_t classify_pixel(const CloudPoint& p, const GapTestLimits& g, float* distance_m) {
+  const float s = g.nx * p.x_m + g.ny * p.y_m + g.nz * p.z_m + g.d;
+  // is_usable_point() in fewer steps: a NaN or infinite coordinate makes s
+  // NaN (s == s fails), and the range test (min_range > 0) rejects a NaN,
+  // infinite or non-positive z.
+  const bool valid =
+      (p.confidence != 0) & (p.z_m >= g.min_range_m) & (p.z_m <= g.max_range_m) & (s == s);
+  *distance_m = valid ? s : -std::numeric_limits<float>::infinity();
+  // A noisy pixel gets a wider window, by twice its own standard deviation.
+  const float widen = 2.0f * clamp_noise(p.noise_m);
+  const bool on_plane = valid & (std::fabs(s) < g.plane_inlier_m);
+  const bool on_wall = valid & (std::fabs(s) < g.wall_tolerance_m);
+  const bool in_gap = valid & (s >= g.gap_lo_m - widen) & (s <= g.gap_hi_m + widen);
+  return static_cast<std::uint8_t>((valid ? kFlagValid : 0) | (on_plane ? kFlagPlane : 0) |
+                                   (in_gap ? kFlagGap : 0) | (on_wall ? kFlagWall : 0));
+}
+
+// classify_pixel() for four pixels at once; lanes are all-ones where a
+// comparison holds, so a flag is its lane masked with the flag's bit.
+Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* distance_m) {
+  const Floats4 x = {p[0].x_m, p[1].x_m, p[2].x_m, p[3].x_m};
+  const Floats4 y = {p[0].y_m, p[1].y_m, p[2].y_m, p[3].y_m};
+  const Floats4 z = {p[0].z_m, p[1].z_m, p[2].z_m, p[3].z_m};
+  const Floats4 noise = {p[0].noise_m, p[1].noise_m, p[2].noise_m, p[3].noise_m};
+  const Ints4 confidence = {p[0].confidence, p[1].confidence, p[2].confidence, p[3].confidence};
+  const Floats4 s = g.nx * x + g.ny * y + g.nz * z + g.d;
+  const Ints4 valid = (confidence != 0) & (z >= g.min_range_m) & (z <= g.max_range_m) & (s == s);
+  const Floats4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
+  const Floats4 below_all = zero - std::numeric_limits<float>::infinity();
+  const Floats4 distance = valid ? s : below_all;
+  for (int j = 0; j < 4; ++j) distance_m[j] = distance[j];
+  const Floats4 positive = noise > zero ? noise : zero;  // NaN fails: 0
+  const Floats4 cap = {0.02f, 0.02f, 0.02f, 0.02f};
+  const Floats4 widen = 2.0f * (positive < cap ? positive : cap);
+  const Floats4 abs_s = s < zero ? -s : s;
+  const Ints4 on_plane = valid & (abs_s < g.plane_inlier_m);
+  const Ints4 on_wall = valid & (abs_s < g.wall_tolerance_m);
+  const Ints4 in_gap = valid & (s >= g.gap_lo_m - widen) & (s <= g.gap_hi_m + widen);
+  constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap,
+                         kWall = kFlagWall;
+  return (valid & kValid) | (on_plane & kPlane) | (in_gap & kGap) | (on_wall & kWall);
+}
+
+}  // namespace
+
+std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels) {
+  const GapTestLimits g{wall.normal.x(),    wall.normal.y(),     wall.normal.z(), wall.d,
+                        cfg.min_range_m,    cfg.max_range_m,     gap_min_m(cfg),  gap_max_m(cfg),
+                        cfg.plane_inlier_m, cfg.wall_tolerance_m};
+  const std::size_t n = cloud.size();
+  // Invalid pixels are scattered over a ToF frame, so the gap list is built
+  // without branches: every index is written and the count advances only
+  // when the pixel belongs (the list has a slot per pixel). An invalid
+  // pixel's distance is -infinity, so that "raised off the wall" is one
+  // comparison that an invalid pixel always fails. The outputs are locals: byte stores through a
+  // member could alias anything and force reloads.
+  const CloudPoint* points = cloud.points;
+  float* distance_out = ws.signed_distance_m.get();
+  std::uint8_t* flags_out = ws.flags.get();
+  std::int32_t* gap_out = ws.gap.begin();
+  std::size_t valid_count = 0, gap_count = 0, plane_inliers = 0;
+  std::size_t k = 0;
+  for (; k + 4 <= n; k += 4) {
+    const Ints4 flags = classify_four_pixels(points + k, g, distance_out + k);
+    for (int j = 0; j < 4; ++j) {
+      const std::uint32_t f = static_cast<std::uint32_t>(flags[j]);
+      flags_out[k + j] = static_cast<std::uint8_t>(f);
+      valid_count += (f & kFlagValid) != 0;
+      plane_inliers += (f & kFlagPlane) != 0;
+      gap_out[gap_count] = static_cast<std::int32_t>(k + j);
+      gap_count += (f & kFlagGap) != 0;
+    }
+  }
+  for (; k < n; ++k) {
+    const std::uint32_t f = classify_pixel(points[k], g, distance_out + k);
+    flags_out[k] = static_cast<std::uint8_t>(f);
+    valid_count += (f & kFlagValid) != 0;
+    plane_inliers += (f & kFlagPlane) != 0;
+    gap_out[gap_count] = static_cast<std::int32_t>(k);
+    gap_count += (f & kFlagGap) != 0;
+  }
+  ws.gap.set_size(gap_count);
+  *valid_pixels = static_cast<std::uint32_t>(valid_count);
+  return static_cast<std::uint32_t>(plane_inliers);
+}
+
+}  // namespace estimator
