@@ -211,14 +211,18 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
   for (std::int32_t i : ws.gap) {
     const Pixel q = pixel_of(i);
     const float inv_z = 1.0f / cloud.points[i].z_m;
-    float column_width = 0.0f, column_peak = 0.0f;
-    runs.column(q, &column_width, &column_peak);
-    const bool x_ok = plausible(runs.row(q).width_m) &&
-                      probe_on_wall(cloud, ws, q, 0, 1, round_to_int(fx_plus * inv_z)) &&
-                      probe_on_wall(cloud, ws, q, 0, -1, round_to_int(fx_minus * inv_z));
-    const bool y_ok = plausible(column_width) &&
-                      probe_on_wall(cloud, ws, q, 1, 0, round_to_int(fy_plus * inv_z)) &&
-                      probe_on_wall(cloud, ws, q, -1, 0, round_to_int(fy_minus * inv_z));
+    // The probes first: a few byte loads, where a run's width may need a
+    // walk down a column.
+    const bool x_ok = probe_on_wall(cloud, ws, q, 0, 1, round_to_int(fx_plus * inv_z)) &&
+                      probe_on_wall(cloud, ws, q, 0, -1, round_to_int(fx_minus * inv_z)) &&
+                      plausible(runs.row(q).width_m);
+    bool y_ok = probe_on_wall(cloud, ws, q, 1, 0, round_to_int(fy_plus * inv_z)) &&
+                probe_on_wall(cloud, ws, q, -1, 0, round_to_int(fy_minus * inv_z));
+    if (y_ok) {
+      float column_width = 0.0f, column_peak = 0.0f;
+      runs.column(q, &column_width, &column_peak);
+      y_ok = plausible(column_width);
+    }
     if (x_ok) ws.flags[i] |= kFlagCrossX;
     if (y_ok) ws.flags[i] |= kFlagCrossY;
     if (x_ok || y_ok) ws.cross.push(i);
