@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "estimator/handrail_filters.hpp"
@@ -15,6 +16,7 @@ namespace {
 
 typedef float Floats4 __attribute__((vector_size(16)));
 typedef std::int32_t Ints4 __attribute__((vector_size(16)));
+typedef std::uint8_t Bytes4 __attribute__((vector_size(4)));
 
 // What the pass needs of the wall and the configuration, once per frame.
 struct GapTestLimits {
@@ -70,7 +72,7 @@ Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* d
   const Ints4 on_wall = valid & (abs_s < g.wall_tolerance_m);
   const Ints4 in_gap = valid & (s >= g.gap_lo_m - widen) & (s <= g.gap_hi_m + widen);
   constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap,
-                         kWall = kFlagWall;
+                         kWall = kFlagWall;  // the enum as the lanes' type
   return (valid & kValid) | (on_plane & kPlane) | (in_gap & kGap) | (on_wall & kWall);
 }
 
@@ -93,17 +95,29 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
   std::uint8_t* flags_out = ws.flags.get();
   std::int32_t* gap_out = ws.gap.begin();
   std::size_t valid_count = 0, gap_count = 0, plane_inliers = 0;
+  // Lane-wise counts (a true lane is -1, so subtracting counts it); a block
+  // of four is at most 4 per lane, so 2^31 / 4 pixels cannot overflow.
+  Ints4 valid_lanes = {0, 0, 0, 0}, plane_lanes = {0, 0, 0, 0};
+  constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap;
   std::size_t k = 0;
   for (; k + 4 <= n; k += 4) {
     const Ints4 flags = classify_four_pixels(points + k, g, distance_out + k);
+    const Bytes4 flag_bytes = __builtin_convertvector(flags, Bytes4);
+    std::memcpy(flags_out + k, &flag_bytes, sizeof flag_bytes);
+    valid_lanes -= (flags & kValid) != 0;
+    plane_lanes -= (flags & kPlane) != 0;
+    // The gap set is a tenth of a frame and comes in patches: most blocks
+    // have none of it, and the branch is well predicted.
+    const Ints4 gap_bits = flags & kGap;
+    if ((gap_bits[0] | gap_bits[1] | gap_bits[2] | gap_bits[3]) == 0) continue;
     for (int j = 0; j < 4; ++j) {
-      const std::uint32_t f = static_cast<std::uint32_t>(flags[j]);
-      flags_out[k + j] = static_cast<std::uint8_t>(f);
-      valid_count += (f & kFlagValid) != 0;
-      plane_inliers += (f & kFlagPlane) != 0;
       gap_out[gap_count] = static_cast<std::int32_t>(k + j);
-      gap_count += (f & kFlagGap) != 0;
+      gap_count += gap_bits[j] != 0;
     }
+  }
+  for (int j = 0; j < 4; ++j) {
+    valid_count += static_cast<std::size_t>(valid_lanes[j]);
+    plane_inliers += static_cast<std::size_t>(plane_lanes[j]);
   }
   for (; k < n; ++k) {
     const std::uint32_t f = classify_pixel(points[k], g, distance_out + k);
