@@ -63,7 +63,7 @@ Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* d
   const Floats4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
   const Floats4 below_all = zero - std::numeric_limits<float>::infinity();
   const Floats4 distance = valid ? s : below_all;
-  for (int j = 0; j < 4; ++j) distance_m[j] = distance[j];
+  std::memcpy(distance_m, &distance, sizeof distance);   // one unaligned vector store
   const Floats4 positive = noise > zero ? noise : zero;  // NaN fails: 0
   const Floats4 cap = {0.02f, 0.02f, 0.02f, 0.02f};
   const Floats4 widen = 2.0f * (positive < cap ? positive : cap);

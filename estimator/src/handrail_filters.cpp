@@ -31,11 +31,6 @@ class AscendingPixels {
   std::int32_t row_start_ = 0;
 };
 
-bool inside(const OrganizedCloud& cloud, int row, int col) {
-  return row >= 0 && col >= 0 && row < static_cast<int>(cloud.height) &&
-         col < static_cast<int>(cloud.width);
-}
-
 // Nearest integer; inline (std::lround is a library call on the hot path).
 int round_to_int(float x) {
   return static_cast<int>(x < 0.0f ? x - 0.5f : x + 0.5f);
@@ -55,12 +50,14 @@ float clamp_noise(float noise_m) {
 // the offset: nearer, it could land on the bar itself.
 bool probe_on_wall(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, int drow, int dcol,
                    int offset_px) {
-  for (int k = offset_px; k >= (offset_px + 1) / 2; --k) {
-    const int r = q.row + drow * k, c = q.col + dcol * k;
-    if (!inside(cloud, r, c)) continue;
-    const std::int32_t i = r * static_cast<int>(cloud.width) + c;
-    if (!(ws.flags[i] & kFlagValid)) continue;
-    return (ws.flags[i] & kFlagWall) != 0;
+  // One unsigned comparison per axis rejects both sides of the image.
+  const unsigned width = cloud.width, height = cloud.height;
+  const std::uint8_t* flags = ws.flags.get();
+  int r = q.row + drow * offset_px, c = q.col + dcol * offset_px;
+  for (int k = offset_px; k >= (offset_px + 1) / 2; --k, r -= drow, c -= dcol) {
+    if (static_cast<unsigned>(r) >= height || static_cast<unsigned>(c) >= width) continue;
+    const std::uint8_t f = flags[static_cast<unsigned>(r) * width + static_cast<unsigned>(c)];
+    if (f & kFlagValid) return (f & kFlagWall) != 0;
   }
   return false;
 }
