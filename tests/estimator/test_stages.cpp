@@ -50,6 +50,50 @@ Plane run_filters(const OrganizedCloud& cloud, const DetectorConfig& cfg, Worksp
   return plane.plane;
 }
 
+// The one pass judges every pixel the same way whether it falls in a block
+// of four or in the scalar tail: a 7 x 3 cloud (five blocks and one pixel)
+// with the wall, raised, noisy and invalid pixels in both.
+void test_gap_pass_judges_each_pixel_including_the_tail(void**) {
+  const DetectorConfig cfg = test_config();
+  const float lo = gap_min_m(cfg), hi = gap_max_m(cfg);
+  const float raised = 0.5f * (lo + hi);
+  Plane wall;  // z = 0.6 m, normal toward the camera
+  wall.normal = Eigen::Vector3f(0.0f, 0.0f, -1.0f);
+  wall.d = 0.6f;
+  std::vector<CloudPoint> pts(21, CloudPoint{0.0f, 0.0f, 0.6f, 0.001f, 100, 255});
+  auto at_height = [&](int i, float s_m) { pts[static_cast<std::size_t>(i)].z_m = 0.6f - s_m; };
+  at_height(2, raised);
+  at_height(20, raised);  // the tail
+  // Just below the window, let in by its own noise (2 sigma = 1 cm).
+  at_height(6, lo - 0.005f);
+  pts[6].noise_m = 0.005f;
+  at_height(7, lo - 0.005f);  // the same height with little noise stays out
+  pts[9].confidence = 0;
+  pts[13].x_m = std::nanf("");
+  pts[17].z_m = 5.0f;  // beyond max_range
+  OrganizedCloud cloud;
+  cloud.width = 7;
+  cloud.height = 3;
+  cloud.points = pts.data();
+  Workspace ws(cloud.size());
+  std::uint32_t valid = 0;
+  const std::uint32_t plane_inliers = gap_distance_test(cloud, cfg, wall, ws, &valid);
+  assert_int_equal(valid, 18);
+  assert_int_equal(plane_inliers, 14);  // the valid pixels on the wall
+  assert_int_equal(ws.gap.size(), 3);
+  assert_int_equal(ws.gap[0], 2);
+  assert_int_equal(ws.gap[1], 6);
+  assert_int_equal(ws.gap[2], 20);
+  for (std::size_t i : {9u, 13u, 17u}) {
+    assert_int_equal(ws.flags[i], 0);
+    assert_true(std::isinf(ws.signed_distance_m[i]) && ws.signed_distance_m[i] < 0.0f);
+  }
+  assert_int_equal(ws.flags[0], kFlagValid | kFlagPlane | kFlagWall);
+  assert_int_equal(ws.flags[20], kFlagValid | kFlagGap);
+  assert_near(ws.signed_distance_m[20], raised, 1e-6);
+  assert_int_equal(ws.flags[7], kFlagValid);
+}
+
 void test_pixel_scale_recovers_projection(void**) {
   SyntheticScene s;
   std::vector<CloudPoint> pts;
@@ -276,6 +320,7 @@ void test_config_validation_names_the_field(void**) {
 
 int main() {
   const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_gap_pass_judges_each_pixel_including_the_tail),
       cmocka_unit_test(test_pixel_scale_recovers_projection),
       cmocka_unit_test(test_plane_fronto_parallel_and_tilted),
       cmocka_unit_test(test_plane_fails_without_support),
