@@ -2,8 +2,7 @@
 // It is the frame's largest cost after the cloud has been streamed in, so
 // it works on four pixels at a time with the compiler's portable 128-bit
 // vectors (SSE2 on the host, NEON on the BeagleBone's Cortex-A8): the
-// same source, no intrinsics, and a scalar pass for the last few pixels.
-#include <cmath>
+// same source, no intrinsics, and the last few pixels as a block padded with invalid points.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -26,32 +25,13 @@ struct GapTestLimits {
   float plane_inlier_m, wall_tolerance_m;
 };
 
-// A pixel's noise, bounded to [0, 2 cm]; NaN counts as 0 (comparisons with
-// NaN are false), so no bad value can open the windows.
-float clamp_noise(float noise_m) {
-  const float positive = noise_m > 0.0f ? noise_m : 0.0f;
-  return positive < 0.02f ? positive : 0.02f;
-}
-
-std::uint8_t classify_pixel(const CloudPoint& p, const GapTestLimits& g, float* distance_m) {
-  const float s = g.nx * p.x_m + g.ny * p.y_m + g.nz * p.z_m + g.d;
-  // is_usable_point() in fewer steps: a NaN or infinite coordinate makes s
-  // NaN (s == s fails), and the range test (min_range > 0) rejects a NaN,
-  // infinite or non-positive z.
-  const bool valid =
-      (p.confidence != 0) & (p.z_m >= g.min_range_m) & (p.z_m <= g.max_range_m) & (s == s);
-  *distance_m = valid ? s : -std::numeric_limits<float>::infinity();
-  // A noisy pixel gets a wider window, by twice its own standard deviation.
-  const float widen = 2.0f * clamp_noise(p.noise_m);
-  const bool on_plane = valid & (std::fabs(s) < g.plane_inlier_m);
-  const bool on_wall = valid & (std::fabs(s) < g.wall_tolerance_m);
-  const bool in_gap = valid & (s >= g.gap_lo_m - widen) & (s <= g.gap_hi_m + widen);
-  return static_cast<std::uint8_t>((valid ? kFlagValid : 0) | (on_plane ? kFlagPlane : 0) |
-                                   (in_gap ? kFlagGap : 0) | (on_wall ? kFlagWall : 0));
-}
-
-// classify_pixel() for four pixels at once; lanes are all-ones where a
+// Four pixels' flags and wall distances. Lanes are all-ones where a
 // comparison holds, so a flag is its lane masked with the flag's bit.
+// Validity is is_usable_point() in fewer steps: a NaN or infinite
+// coordinate makes s NaN (s == s fails), and the range test (min_range > 0)
+// rejects a NaN, infinite or non-positive z. A noisy pixel's gap window is
+// widened by twice its standard deviation, the noise bounded to [0, 2 cm]
+// with NaN as 0, so no bad value can open the windows.
 Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* distance_m) {
   const Floats4 x = {p[0].x_m, p[1].x_m, p[2].x_m, p[3].x_m};
   const Floats4 y = {p[0].y_m, p[1].y_m, p[2].y_m, p[3].y_m};
@@ -88,8 +68,8 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
   // without branches: every index is written and the count advances only
   // when the pixel belongs (the list has a slot per pixel). An invalid
   // pixel's distance is -infinity, so that "raised off the wall" is one
-  // comparison that an invalid pixel always fails. The outputs are locals: byte stores through a
-  // member could alias anything and force reloads.
+  // comparison that an invalid pixel always fails. The outputs are locals:
+  // byte stores through a member could alias anything and force reloads.
   const CloudPoint* points = cloud.points;
   float* distance_out = ws.signed_distance_m.get();
   std::uint8_t* flags_out = ws.flags.get();
@@ -115,17 +95,26 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
       gap_count += gap_bits[j] != 0;
     }
   }
+  if (k < n) {
+    // The last one to three pixels: padded with invalid points (confidence
+    // 0), which count nowhere, and only the real pixels' results kept.
+    CloudPoint block[4] = {};
+    float distance[4];
+    const std::size_t rest = n - k;
+    std::memcpy(block, points + k, rest * sizeof(CloudPoint));
+    const Ints4 flags = classify_four_pixels(block, g, distance);
+    valid_lanes -= (flags & kValid) != 0;
+    plane_lanes -= (flags & kPlane) != 0;
+    for (std::size_t j = 0; j < rest; ++j) {
+      distance_out[k + j] = distance[j];
+      flags_out[k + j] = static_cast<std::uint8_t>(flags[j]);
+      gap_out[gap_count] = static_cast<std::int32_t>(k + j);
+      gap_count += (flags[j] & kGap) != 0;
+    }
+  }
   for (int j = 0; j < 4; ++j) {
     valid_count += static_cast<std::size_t>(valid_lanes[j]);
     plane_inliers += static_cast<std::size_t>(plane_lanes[j]);
-  }
-  for (; k < n; ++k) {
-    const std::uint32_t f = classify_pixel(points[k], g, distance_out + k);
-    flags_out[k] = static_cast<std::uint8_t>(f);
-    valid_count += (f & kFlagValid) != 0;
-    plane_inliers += (f & kFlagPlane) != 0;
-    gap_out[gap_count] = static_cast<std::int32_t>(k);
-    gap_count += (f & kFlagGap) != 0;
   }
   ws.gap.set_size(gap_count);
   *valid_pixels = static_cast<std::uint32_t>(valid_count);
