@@ -281,8 +281,15 @@ void Scene::add_handrail(const Handrail& h) {
     s.mesh.R.col(2) = a;
     s.mesh.t = h.foot_center;
     const Eigen::Vector3d lo = h.mesh->min_corner(), hi = h.mesh->max_corner();
-    set_box_hull(s.mesh.R * (0.5 * (lo + hi)) + s.mesh.t, s.mesh.R, 0.5 * (hi - lo), &s);
-    s.bound_center = s.mesh.R * (0.5 * (lo + hi)) + s.mesh.t;
+    const Eigen::Vector3d center = s.mesh.R * (0.5 * (lo + hi)) + s.mesh.t;
+    // The hull: a capsule along the rail around the model's box (a long,
+    // thin box's eight corners would cull far less once the camera rolls).
+    const double half_along = 0.5 * (hi.z() - lo.z());
+    s.hull[0] = center - half_along * a;
+    s.hull[1] = center + half_along * a;
+    s.hull_points = 2;
+    s.hull_radius = 0.5 * std::hypot(hi.x() - lo.x(), hi.y() - lo.y());
+    s.bound_center = center;
     s.bound_radius = 0.5 * (hi - lo).norm();
     surfaces.push_back(s);
     return;
@@ -339,15 +346,14 @@ void Scene::add_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
   surfaces.push_back(make_box(center, R, 0.5 * size_m, -1, reflectivity));
 }
 
-bool intersect_surfaces(const Scene& scene, const std::int32_t* surfaces, std::size_t count,
-                        const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min,
-                        double t_max, Hit* hit) {
+bool intersect_scene(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                     double t_min, double t_max, Hit* hit) {
   double t = t_max;
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
   std::int32_t which = -1;
-  for (std::size_t j = 0; j < count; ++j) {
-    const std::int32_t k = surfaces[j];
-    const Surface& s = scene.surfaces[static_cast<std::size_t>(k)];
+  for (std::size_t j = 0; j < scene.surfaces.size(); ++j) {
+    const std::int32_t k = static_cast<std::int32_t>(j);
+    const Surface& s = scene.surfaces[j];
     // A wall's bounding sphere never rejects: its exact test is cheaper.
     if (s.kind != SurfaceKind::kRect && misses_bound(s, o, d, t)) continue;
     bool got = false;
@@ -384,28 +390,6 @@ bool intersect_surfaces(const Scene& scene, const std::int32_t* surfaces, std::s
   hit->normal = n.dot(d) > 0.0 ? Eigen::Vector3d(-n) : n;
   hit->surface = which;
   return true;
-}
-
-bool intersect_scene(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                     double t_min, double t_max, Hit* hit) {
-  // Small scenes: a fixed list of every index, built on the stack in chunks.
-  constexpr std::size_t kChunk = 256;
-  std::int32_t ids[kChunk];
-  Hit best;
-  bool any = false;
-  double limit = t_max;
-  for (std::size_t base = 0; base < scene.surfaces.size(); base += kChunk) {
-    const std::size_t n = std::min(kChunk, scene.surfaces.size() - base);
-    for (std::size_t k = 0; k < n; ++k) ids[k] = static_cast<std::int32_t>(base + k);
-    Hit h;
-    if (intersect_surfaces(scene, ids, n, o, d, t_min, limit, &h)) {
-      best = h;
-      limit = h.t;
-      any = true;
-    }
-  }
-  if (any) *hit = best;
-  return any;
 }
 
 }  // namespace sim_hal

@@ -101,8 +101,9 @@ void test_hierarchy_matches_brute_force(void**) {
     assert_int_equal(got, want);
     if (got) {
       ++hits;
-      assert_near(hit.t, t_ref, 1e-9);
-      assert_near(hit.normal.norm(), 1.0, 1e-9);
+      // The walk is in single precision: a micrometre at these ranges.
+      assert_near(hit.t, t_ref, 1e-6);
+      assert_near(hit.normal.norm(), 1.0, 1e-6);
     }
   }
   assert_true(hits > 50);

@@ -20,9 +20,14 @@ class TriangleMesh {
   // hierarchy. Degenerate triangles are dropped.
   TriangleMesh(std::vector<Eigen::Vector3d> vertices, std::vector<Eigen::Vector3i> triangles);
 
-  // Nearest hit along o + t d (model frame) with t in (t_min, t_max).
+  // Nearest hit along o + t d (model frame) with t in (t_min, t_max). The
+  // walk is in single precision (the model files hold floats).
   bool intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min, double t_max,
                  MeshHit* hit) const;
+  // The same for the renderer: `normal` unit, model frame, not yet facing
+  // the ray.
+  bool intersect(const Eigen::Vector3f& o, const Eigen::Vector3f& d, float t_min, float t_max,
+                 float* t, Eigen::Vector3f* normal) const;
 
   const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
   std::size_t triangle_count() const { return triangles_.size(); }
@@ -36,10 +41,24 @@ class TriangleMesh {
     std::int32_t count = 0;  // triangles in a leaf; 0 for an inner node
   };
   void build(std::int32_t index, std::int32_t begin, std::int32_t end, int depth);
+  std::int32_t split_by_surface_area(std::int32_t begin, std::int32_t end,
+                                     const Eigen::Vector3d& centroid_lo,
+                                     const Eigen::Vector3d& centroid_hi);
 
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<Eigen::Vector3i> triangles_;
   std::vector<Node> nodes_;
+  // What intersect() walks: the nodes and triangles (in the hierarchy's
+  // order, as a corner and two edges) in single precision.
+  struct FlatNode {
+    float lo[3], hi[3];
+    std::int32_t first, count;
+  };
+  struct FlatTriangle {
+    float corner[3], e1[3], e2[3];
+  };
+  std::vector<FlatNode> flat_nodes_;
+  std::vector<FlatTriangle> flat_triangles_;
   Eigen::Vector3d lo_ = Eigen::Vector3d::Zero(), hi_ = Eigen::Vector3d::Zero();
 };
 

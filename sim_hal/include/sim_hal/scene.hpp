@@ -68,7 +68,8 @@ struct Surface {
   double bound_radius = 0.0;
   // A tighter bound for the renderer's per-tile cull: the convex hull of
   // spheres of radius hull_radius around the first hull_points points
-  // (a rectangle's corners, a cylinder's cap centres, a box's corners).
+  // (a rectangle's corners, a cylinder's cap centres, a box's corners, a
+  // capsule along a mesh handrail).
   Eigen::Vector3d hull[8];
   int hull_points = 0;
   double hull_radius = 0.0;
@@ -113,13 +114,11 @@ struct Hit {
   std::int32_t surface = -1;
 };
 
-// Nearest hit along origin + t * dir (dir unit) with t in (t_min, t_max).
+// Nearest hit along origin + t * dir (dir unit) with t in (t_min, t_max),
+// in double precision over every surface: the reference (ground truth's
+// occlusion test; the renderer's own ray casting, view_surfaces.hpp, is
+// checked against it).
 bool intersect_scene(const Scene& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
                      double t_min, double t_max, Hit* hit);
-
-// The same, testing only the listed surfaces (a renderer's per-tile cull).
-bool intersect_surfaces(const Scene& scene, const std::int32_t* surfaces, std::size_t count,
-                        const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_min,
-                        double t_max, Hit* hit);
 
 }  // namespace sim_hal

@@ -9,6 +9,7 @@
 #include "hal/depth_frame.hpp"
 #include "sim_hal/camera_model.hpp"
 #include "sim_hal/scene.hpp"
+#include "sim_hal/view_surfaces.hpp"
 
 namespace sim_hal {
 
@@ -78,16 +79,19 @@ class DepthRenderer {
   // overlaps the tile's rays.
   void cull_surfaces_per_tile(const Scene& scene, const Eigen::Isometry3d& T_world_cam);
   void add_flying_pixels(std::uint64_t stream_seed);
+  void largest_jump_neighbour(int row, int col, float* jump_m, float* other_m) const;
+  bool is_flying_candidate(int row, int col) const;
   void add_multipath();
   void apply_flying_filter(std::vector<hal::DepthPoint>* out);
 
   CameraIntrinsics cam_;
   ToFSettings settings_;
   std::vector<Eigen::Vector3f> rays_;
-  std::vector<float> range_, measured_, amplitude_, cos_incidence_, bias_, row_nearest_, far_range_;
+  std::vector<float> range_, measured_, amplitude_, cos_incidence_, bias_, noise_draw_, point_z_;
   std::vector<std::int32_t> surface_;
   std::vector<float> sorted_;
-  std::vector<std::uint8_t> drop_;
+  std::vector<float> bias_for_count_;  // multipath bias by nearer-sample count
+  std::vector<std::uint8_t> flying_candidate_;
   // Tiles: the range of their rays' normalised image coordinates (x/z, y/z
   // before distortion, which is what a pinhole projection of the scene
   // gives), and the surfaces each tile may see (offsets into
@@ -95,10 +99,20 @@ class DepthRenderer {
   struct TileBounds {
     float x_min, x_max, y_min, y_max;
   };
+  // A two-point hull's (cable, bar) image: the segment between its end
+  // points' images and how far either side of it the surface may reach.
+  struct SegmentImage {
+    bool valid;
+    float x0, y0, x1, y1, margin;
+  };
+  static bool segment_near_tile(const SegmentImage& seg, const TileBounds& tile);
   std::vector<TileBounds> tile_bounds_;
   std::vector<TileBounds> surface_bounds_;
+  std::vector<SegmentImage> surface_segments_;
   std::vector<std::size_t> tile_begin_;
   std::vector<std::int32_t> tile_surfaces_;
+  std::vector<std::int32_t> by_kind_;  // surface indices, grouped by kind
+  std::vector<ViewSurface> view_;      // the scene in this frame's camera frame
 };
 
 }  // namespace sim_hal
