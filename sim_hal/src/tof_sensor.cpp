@@ -160,25 +160,29 @@ void DepthRenderer::cast_rays(const Scene& scene, const Eigen::Isometry3d& T_wor
   // Look a little past the sensor's range so that out-of-range surfaces
   // still read as "too far" rather than as nothing.
   const float t_max_m = static_cast<float>(settings_.range_max_m * 1.5);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y * w + x);
-      const std::size_t tile = static_cast<std::size_t>((y / kTile) * tiles_x + x / kTile);
-      ViewHit hit;
-      if (intersect_view(view_.data(), tile_surfaces_.data() + tile_begin_[tile],
-                         tile_begin_[tile + 1] - tile_begin_[tile], rays_[i], 1e-4f, t_max_m,
-                         &hit)) {
-        range_[i] = hit.t_m;
-        surface_[i] = hit.surface;
-        cos_incidence_[i] = hit.cos_incidence;
-        const float refl =
-            static_cast<float>(scene.surfaces[static_cast<std::size_t>(hit.surface)].reflectivity);
-        amplitude_[i] = refl * hit.cos_incidence / (hit.t_m * hit.t_m);
-      } else {
-        range_[i] = 0.0f;
-        surface_[i] = -1;
-        cos_incidence_[i] = 0.0f;
-        amplitude_[i] = 0.0f;
+  // Tile by tile, so each tile's surface list is looked up once.
+  for (int ty = 0; ty < h; ty += kTile) {
+    for (int tx = 0; tx < w; tx += kTile) {
+      const std::size_t tile = static_cast<std::size_t>((ty / kTile) * tiles_x + tx / kTile);
+      const std::int32_t* ids = tile_surfaces_.data() + tile_begin_[tile];
+      const std::size_t count = tile_begin_[tile + 1] - tile_begin_[tile];
+      for (int y = ty; y < std::min(h, ty + kTile); ++y) {
+        for (int x = tx; x < std::min(w, tx + kTile); ++x) {
+          const std::size_t i = static_cast<std::size_t>(y * w + x);
+          ViewHit hit;
+          if (intersect_view(view_.data(), ids, count, rays_[i], 1e-4f, t_max_m, &hit)) {
+            range_[i] = hit.t_m;
+            surface_[i] = hit.surface;
+            cos_incidence_[i] = hit.cos_incidence;
+            amplitude_[i] = view_[static_cast<std::size_t>(hit.surface)].reflectivity *
+                            hit.cos_incidence / (hit.t_m * hit.t_m);
+          } else {
+            range_[i] = 0.0f;
+            surface_[i] = -1;
+            cos_incidence_[i] = 0.0f;
+            amplitude_[i] = 0.0f;
+          }
+        }
       }
     }
   }
@@ -323,7 +327,6 @@ void DepthRenderer::add_multipath() {
   // anything nearer" first: counting densely is cheaper than branching).
   // A pixel with no hit has range 0, which is never 1 cm farther than a
   // sample, so its count and bias are 0.
-  const Floats4 lo = {0.01f, 0.01f, 0.01f, 0.01f}, hi = {0.15f, 0.15f, 0.15f, 0.15f};
   const Floats4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
   for (int row = 0; row < h; ++row) {
     if (row < win || row >= h - win) {
@@ -333,14 +336,16 @@ void DepthRenderer::add_multipath() {
     int col = 0;
     for (; col < win; ++col) bias_at_edge(row, col);
     for (; col + 4 <= w - win; col += 4) {
+      // "1 to 15 cm nearer, and a hit" as one open interval of ranges.
       const Floats4 r = load_floats4(range + row * w + col);
+      const Floats4 far_end = r - 0.15f, near_end = r - 0.01f;
+      const Floats4 lower = far_end > zero ? far_end : zero;
       Ints4 count = {0, 0, 0, 0};
       for (int dr = -win; dr <= win; dr += 2) {
         const float* line = range + (row + dr) * w + col;
         for (int dc = -win; dc <= win; dc += 2) {
           const Floats4 rn = load_floats4(line + dc);
-          const Floats4 diff = r - rn;
-          count -= (rn > zero) & (diff > lo) & (diff < hi);  // true lanes are -1
+          count -= (rn > lower) & (rn < near_end);  // true lanes are -1
         }
       }
       float* out = bias_.data() + row * w + col;

@@ -250,6 +250,7 @@ void place_surfaces_in_view(const Scene& scene, const Eigen::Isometry3d& T_world
     ViewSurface v;
     v.kind = s.kind;
     v.scene_index = static_cast<std::int32_t>(k);
+    v.reflectivity = static_cast<float>(s.reflectivity);
     const Eigen::Vector3d bound_cam = T_cam_world * s.bound_center;
     v.bound_center = bound_cam.cast<float>();
     v.bound_radius = static_cast<float>(s.bound_radius);

@@ -21,6 +21,7 @@ namespace sim_hal {
 struct ViewSurface {
   SurfaceKind kind = SurfaceKind::kRect;
   std::int32_t scene_index = -1;
+  float reflectivity = 0.5f;
   // Bounding sphere in the camera frame, for a quick reject.
   Eigen::Vector3f bound_center = Eigen::Vector3f::Zero();
   float bound_radius = 0.0f, bound_center_sq_m2 = 0.0f;
