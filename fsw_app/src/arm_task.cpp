@@ -13,7 +13,7 @@ ArmTask::ArmTask(LcmHub& hub, arm::JointActuators& joints, arm::GripperActuator&
       period_us_(static_cast<std::int64_t>(1e6 / rate_hz)),
       rt_priority_(rt_priority),
       state_pub_(hub, channel::kArmState) {
-  hub_.subscribe(channel::kPerchCommand, &command_box_);
+  hub_.subscribe(channel::kPerchCommand, &command_queue_);
   hub_.subscribe(channel::kApproachStatus, &approach_box_);
   reserve_text(&state_);
 }
@@ -32,9 +32,10 @@ void ArmTask::stop() {
 }
 
 void ArmTask::cycle() {
-  const std::uint64_t seq = command_box_.read(&command_);
-  if (seq != command_seen_) {
-    command_seen_ = seq;
+  // The sequence keeps one accepted command for its next step (an abort
+  // is never replaced), but judges every one: each shows in ARM_STATE's
+  // last command and rejection count. Bounded by the queue's capacity.
+  for (std::size_t k = 0; k < kCommandQueue && command_queue_.pop(&command_); ++k) {
     last_sequence_ = command_.sequence;
     sequence_.submit(
         {static_cast<std::uint8_t>(command_.command), command_.tilt_rad, command_.pan_rad});
@@ -67,6 +68,7 @@ void ArmTask::fill_state() {
   m.last_reject = static_cast<std::int8_t>(s.last_reject);
   m.last_reject_name = arm::to_string(s.last_reject);
   m.commands_rejected = static_cast<std::int32_t>(s.commands_rejected);
+  m.commands_dropped = static_cast<std::int32_t>(command_queue_.overflows());
   m.tilt_rad = s.joints.q.tilt_rad;
   m.pan_rad = s.joints.q.pan_rad;
   m.tilt_goal_rad = s.joint_goal.tilt_rad;

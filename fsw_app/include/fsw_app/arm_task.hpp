@@ -1,7 +1,8 @@
 #pragma once
 // The arm task: runs the perch sequence at its rate over the actuator
-// interfaces, takes PERCH_COMMAND (validated on receipt; a rejection shows
-// in ARM_STATE) and APPROACH_STATUS, and publishes ARM_STATE every cycle.
+// interfaces, takes PERCH_COMMAND (each one validated on receipt, in order;
+// a rejection shows in ARM_STATE) and APPROACH_STATUS, and publishes
+// ARM_STATE every cycle.
 // It owns no port: the caller builds the drivers (real ports or the
 // simulated devices' ptys) and hands over the interfaces.
 #include <cstdint>
@@ -41,13 +42,16 @@ class ArmTask {
   arm::PerchSequence sequence_;
   std::int64_t period_us_;
   int rt_priority_;
-  Mailbox<hrp::perch_command_t> command_box_;
+  // Every command is submitted (validated and answered), up to this many
+  // per cycle; more within one 50 ms cycle is a runaway sender, and the
+  // oldest are dropped and counted in ARM_STATE.commands_dropped.
+  static constexpr std::size_t kCommandQueue = 8;
+  MessageQueue<hrp::perch_command_t, kCommandQueue> command_queue_;
   Mailbox<hrp::approach_status_t> approach_box_;
   Publisher<hrp::arm_state_t> state_pub_;
   hrp::perch_command_t command_{};
   hrp::approach_status_t approach_{};
   hrp::arm_state_t state_{};
-  std::uint64_t command_seen_ = 0;
   std::int32_t last_sequence_ = 0;
   PeriodicThread thread_;  // last: stopped before the members it uses go
 };

@@ -51,6 +51,54 @@ class Mailbox {
   std::atomic<std::uint64_t> decode_errors_{0};
 };
 
+// A fixed queue of decoded messages for a channel where every message
+// counts (commands: each is validated and answered, so two arriving within
+// one cycle must not become one). Holds `Capacity` messages; when full, the
+// oldest is overwritten and counted (a newer command, an abort above all,
+// matters more than an older one). No allocation: messages without
+// variable-length fields only.
+template <typename Msg, std::size_t Capacity>
+class MessageQueue {
+  static_assert(Capacity > 0, "a queue holds at least one message");
+
+ public:
+  // Takes the oldest message out; false when there is none.
+  bool pop(Msg* out) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (count_ == 0) return false;
+    *out = slots_[head_];
+    head_ = (head_ + 1) % Capacity;
+    --count_;
+    return true;
+  }
+  std::uint64_t overflows() const { return overflows_.load(); }
+  std::uint64_t decode_errors() const { return decode_errors_.load(); }
+
+  // Dispatcher side. Decoded aside first, so a malformed message leaves
+  // the queue as it was.
+  void deliver(const void* data, std::uint32_t size) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (incoming_.decode(data, 0, static_cast<int>(size)) < 0) {
+      ++decode_errors_;
+      return;
+    }
+    if (count_ == Capacity) {
+      head_ = (head_ + 1) % Capacity;
+      --count_;
+      ++overflows_;
+    }
+    slots_[(head_ + count_) % Capacity] = incoming_;
+    ++count_;
+  }
+
+ private:
+  std::mutex mutex_;
+  Msg slots_[Capacity]{};
+  Msg incoming_{};
+  std::size_t head_ = 0, count_ = 0;
+  std::atomic<std::uint64_t> overflows_{0}, decode_errors_{0};
+};
+
 class LcmHub {
  public:
   explicit LcmHub(const std::string& url);
@@ -66,6 +114,16 @@ class LcmHub {
           b->deliver(rbuf->data, rbuf->data_size);
         },
         box);
+  }
+
+  template <typename Msg, std::size_t Capacity>
+  void subscribe(const std::string& channel, MessageQueue<Msg, Capacity>* queue) {
+    lcm_.subscribeFunction(
+        channel,
+        +[](const lcm::ReceiveBuffer* rbuf, const std::string&, MessageQueue<Msg, Capacity>* q) {
+          q->deliver(rbuf->data, rbuf->data_size);
+        },
+        queue);
   }
 
   // Publishes already-encoded bytes; thread safe.
