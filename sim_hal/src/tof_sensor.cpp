@@ -8,10 +8,8 @@
 
 namespace sim_hal {
 
-double flying_pixel_threshold_m(double range_m) {
-  if (range_m <= 1.0) return 0.018;
-  if (range_m >= 4.5) return 0.14;
-  return 0.018 + (0.14 - 0.018) * (range_m - 1.0) / 3.5;
+float flying_pixel_threshold_m(float range_m) {
+  return std::min(0.14f, std::max(0.018f, 0.018f + (range_m - 1.0f) * (0.122f / 3.5f)));
 }
 
 namespace {
@@ -190,12 +188,8 @@ void DepthRenderer::cast_rays(const Scene& scene, const Eigen::Isometry3d& T_wor
 
 namespace {
 
-// The vendor threshold of flying_pixel_threshold_m, in single precision.
-float flying_threshold_f(float range_m) {
-  return std::min(0.14f, std::max(0.018f, 0.018f + (range_m - 1.0f) * (0.122f / 3.5f)));
-}
-
-Floats4 flying_threshold_f(Floats4 range_m) {
+// flying_pixel_threshold_m for four ranges at once.
+Floats4 flying_pixel_threshold_m(Floats4 range_m) {
   const Floats4 ramp = 0.018f + (range_m - 1.0f) * (0.122f / 3.5f);
   const Floats4 low = {0.018f, 0.018f, 0.018f, 0.018f}, high = {0.14f, 0.14f, 0.14f, 0.14f};
   const Floats4 at_least_low = ramp > low ? ramp : low;
@@ -236,7 +230,7 @@ bool DepthRenderer::is_flying_candidate(int row, int col) const {
   if (r <= 0.0f) return false;
   float jump = 0.0f, other = r;
   largest_jump_neighbour(row, col, &jump, &other);
-  return jump > flying_threshold_f(r) && other < r;
+  return jump > flying_pixel_threshold_m(r) && other < r;
 }
 
 void DepthRenderer::add_flying_pixels(std::uint64_t stream_seed) {
@@ -265,7 +259,7 @@ void DepthRenderer::add_flying_pixels(std::uint64_t stream_seed) {
         far_jump = take ? jump : far_jump;
         other = take ? rn : other;
       }
-      const Ints4 edge = (r > zero) & (far_jump > flying_threshold_f(r)) & (other < r);
+      const Ints4 edge = (r > zero) & (far_jump > flying_pixel_threshold_m(r)) & (other < r);
       for (int k = 0; k < 4; ++k) out[col + k] = edge[k] != 0;
     }
     for (; col < w; ++col) out[col] = is_flying_candidate(row, col);
@@ -363,7 +357,7 @@ void DepthRenderer::apply_flying_filter(std::vector<hal::DepthPoint>* out) {
   const float* z = point_z_.data();
   auto jump = [](float zi, float zn, float th) { return zn > 0.0f && std::fabs(zi - zn) > th; };
   auto drop_one = [&](int i) {
-    const float th = flying_threshold_f(z[i]);
+    const float th = flying_pixel_threshold_m(z[i]);
     return z[i] > 0.0f && ((jump(z[i], z[i - 1], th) && jump(z[i], z[i + 1], th)) ||
                            (jump(z[i], z[i - w], th) && jump(z[i], z[i + w], th)));
   };
@@ -376,7 +370,7 @@ void DepthRenderer::apply_flying_filter(std::vector<hal::DepthPoint>* out) {
     int col = 1;
     for (; col + 4 <= w - 1; col += 4) {
       const int i = row * w + col;
-      const Floats4 zi = load_floats4(z + i), th = flying_threshold_f(zi);
+      const Floats4 zi = load_floats4(z + i), th = flying_pixel_threshold_m(zi);
       auto jumps = [&](int offset) {
         const Floats4 zn = load_floats4(z + i + offset);
         return (zn > zero) & (abs_floats4(zi - zn) > th);

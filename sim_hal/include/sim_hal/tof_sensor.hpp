@@ -57,7 +57,7 @@ struct ToFSettings {
 
 // The vendor's flying-pixel threshold: 0.018 m up to 1 m, rising linearly to
 // 0.14 m at 4.5 m.
-double flying_pixel_threshold_m(double range_m);
+float flying_pixel_threshold_m(float range_m);
 
 class DepthRenderer {
  public:
