@@ -80,6 +80,8 @@ TriangleMesh::TriangleMesh(std::vector<Eigen::Vector3d> vertices,
     f.count = node.count;
     flat_nodes_.push_back(f);
   }
+  // The double-precision nodes were the build's work space only.
+  std::vector<Node>().swap(nodes_);
   flat_triangles_.reserve(triangles_.size());
   for (const Eigen::Vector3i& tri : triangles_) {
     const Eigen::Vector3d& a = vertices_[static_cast<std::size_t>(tri[0])];

@@ -59,6 +59,12 @@ DepthRenderer::DepthRenderer(const CameraIntrinsics& cam, const ToFSettings& set
   noise_draw_.resize(n);
   flying_candidate_.resize(n);
   sorted_.reserve(n);
+  // A pixel whose multipath window lies inside the image has (win + 1)^2
+  // samples; its bias is one of that many + 1 values, worked out once.
+  const int win = settings.multipath_window_px, full = (win + 1) * (win + 1);
+  for (int k = 0; k <= full; ++k) {
+    bias_for_count_.push_back(static_cast<float>(settings.multipath_gain_m * k / full));
+  }
 }
 
 // Whether any point of a tile lies within the segment image's margin of
@@ -285,12 +291,15 @@ namespace {
 // nearer than `r`, and how many samples there are.
 void count_nearer_in_window(const float* range_m, int w, int h, int row, int col, int win, float r,
                             int* nearer, int* total) {
+  // "1 to 15 cm nearer, and a hit" as one open interval of ranges (the
+  // four-wide count in add_multipath tests it the same way).
+  const float near_end = r - 0.01f, lower = std::max(r - 0.15f, 0.0f);
   int n = 0, t = 0;
   for (int rr = std::max(0, row - win); rr <= std::min(h - 1, row + win); rr += 2) {
     for (int cc = std::max(0, col - win); cc <= std::min(w - 1, col + win); cc += 2) {
       const float rn = range_m[static_cast<std::size_t>(rr * w + cc)];
       ++t;
-      n += rn > 0.0f && r - rn > 0.01f && r - rn < 0.15f;
+      n += rn > lower && rn < near_end;
     }
   }
   *nearer = n;
@@ -304,13 +313,6 @@ void DepthRenderer::add_multipath() {
   const int win = settings_.multipath_window_px;
   const double gain = settings_.multipath_gain_m;
   const float* range = range_.data();
-  // A pixel whose window lies inside the image has (win + 1)^2 samples;
-  // its bias is one of that many + 1 values.
-  const int full = (win + 1) * (win + 1);
-  bias_for_count_.resize(static_cast<std::size_t>(full) + 1);
-  for (int k = 0; k <= full; ++k) {
-    bias_for_count_[static_cast<std::size_t>(k)] = static_cast<float>(gain * k / full);
-  }
   auto bias_at_edge = [&](int row, int col) {
     const std::size_t i = static_cast<std::size_t>(row * w + col);
     int nearer = 0, total = 0;

@@ -8,6 +8,7 @@
 #include "cmocka_cpp.hpp"
 #include "sim_hal/ground_truth.hpp"
 #include "sim_hal/scenario.hpp"
+#include "sim_hal/sim_random.hpp"
 #include "sim_hal/tof_sensor.hpp"
 
 using namespace sim_hal;
@@ -94,6 +95,34 @@ void test_fast_ray_casting_matches_the_reference(void**) {
   assert_true(hits > compared / 2);
   assert_true(disagree * 2000 <= compared);
   assert_true(worst_m < 20e-6);
+}
+
+// The ziggurat behind every noise draw: a million draws have the standard
+// normal's mean, variance and kurtosis, and its share beyond 3 sigma and
+// beyond the base layer's edge (3.44 sigma, where draws come from the tail
+// routine rather than the layers).
+void test_normal_draws_are_standard_normal(void**) {
+  SimRandom rng(2026);
+  const int n = 1000000;
+  double s1 = 0.0, s2 = 0.0, s4 = 0.0;
+  int beyond_3 = 0, in_tail = 0;
+  for (int k = 0; k < n; ++k) {
+    const double x = rng.normal();
+    s1 += x;
+    s2 += x * x;
+    s4 += x * x * x * x;
+    beyond_3 += std::fabs(x) > 3.0;
+    in_tail += std::fabs(x) > 3.442619855899;
+  }
+  const double mean = s1 / n, variance = s2 / n, kurtosis = s4 / n;
+  print_message("mean %.4f variance %.4f kurtosis %.3f beyond 3 sigma %.5f tail %.6f\n", mean,
+                variance, kurtosis, static_cast<double>(beyond_3) / n,
+                static_cast<double>(in_tail) / n);
+  assert_true(std::fabs(mean) < 0.005);
+  assert_true(std::fabs(variance - 1.0) < 0.005);
+  assert_true(std::fabs(kurtosis - 3.0) < 0.05);
+  assert_true(std::fabs(static_cast<double>(beyond_3) / n - 0.0027) < 0.0003);
+  assert_true(std::fabs(static_cast<double>(in_tail) / n - 0.000576) < 0.00012);
 }
 
 void test_plane_geometry(void**) {
@@ -285,6 +314,7 @@ int main() {
       cmocka_unit_test(test_noise_matches_its_model),
       cmocka_unit_test(test_ground_truth),
       cmocka_unit_test(test_fast_ray_casting_matches_the_reference),
+      cmocka_unit_test(test_normal_draws_are_standard_normal),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

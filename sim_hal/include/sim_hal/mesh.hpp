@@ -47,7 +47,7 @@ class TriangleMesh {
 
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<Eigen::Vector3i> triangles_;
-  std::vector<Node> nodes_;
+  std::vector<Node> nodes_;  // the build's work space, emptied once flattened
   // What intersect() walks: the nodes and triangles (in the hierarchy's
   // order, as a corner and two edges) in single precision.
   struct FlatNode {
