@@ -1,7 +1,8 @@
 // The tasks' cycles allocate nothing once running, publishing included:
 // the estimator task processing recorded frames (ring, detector, tracker,
 // HANDRAIL_ESTIMATE) and the arm task's cycle (command and approach
-// mailboxes, perch sequence, ARM_STATE), counted on the calling thread,
+// mailboxes, perch sequence, ARM_STATE), and frames crossing LCM (the
+// frame publisher and the LCM frame source), counted on the calling thread,
 // where LCM's publish runs too. The hub uses udpm on loopback as in flight;
 // where the host has no multicast route the test says so and uses memq,
 // whose publish copies each message (its allocations then belong to LCM's
@@ -16,6 +17,8 @@
 #include "cmocka_cpp.hpp"
 #include "fsw_app/arm_task.hpp"
 #include "fsw_app/estimator_task.hpp"
+#include "fsw_app/frame_publisher.hpp"
+#include "fsw_app/lcm_depth_camera.hpp"
 #include "hal/pcd_io.hpp"
 #include "test_data.hpp"
 
@@ -25,7 +28,8 @@ std::string g_url;
 bool g_udpm = false;
 
 void choose_url() {
-  g_url = "udpm://239.255.76.67:7699?ttl=0";
+  // The frames test publishes 0.73 MB messages, which this socket hears too.
+  g_url = "udpm://239.255.76.67:7699?ttl=0&recv_buf_size=4194304";
   lcm::LCM probe(g_url);
   g_udpm = probe.good();
   if (!g_udpm) {
@@ -104,6 +108,46 @@ void test_arm_task_cycles_without_allocating(void**) {
   expect_none(allocations, "arm task, 200 cycles and a command");
 }
 
+// Frames crossing LCM: the frame publisher (the camera's side: copy into
+// the message, encode, publish) and the LCM frame source (the estimator
+// side: check, decode, copy out to the camera task), given the bytes as
+// the dispatcher would. LCM's own receive path is not ours to count.
+void test_frames_cross_lcm_without_allocating(void**) {
+  fsw_app::LcmHub hub(g_url);
+  assert_true(hub.good());
+  hal::MonotonicClock clock;
+  fsw_app::FrameRing near_ring(3, 224, 171), far_ring(3, 224, 171);
+  fsw_app::CameraTask near_task(near_ring, 224, 171), far_task(far_ring, 224, 171);
+  fsw_app::FramePublisher publisher(hub, clock, 224, 171, near_task);
+  fsw_app::LcmDepthCamera source(hub, 224, 171);
+  assert_int_equal(source.initialize(), hal::CameraStatus::kSuccess);
+  assert_int_equal(source.register_data_listener(&far_task), hal::CameraStatus::kSuccess);
+  assert_int_equal(source.start_capture(), hal::CameraStatus::kSuccess);
+  std::vector<hal::PcdFrame> frames(2);
+  std::vector<std::vector<std::uint8_t>> encoded(2);
+  const char* names[] = {"table2-iss-1.pcd", "clutter-only-0.pcd"};
+  for (int k = 0; k < 2; ++k) {
+    std::string error;
+    assert_true(hal::read_pcd(testing_support::data_path(names[k]), &frames[k], &error));
+    hrp::depth_frame_t msg;
+    fsw_app::to_msg(frames[k].view(static_cast<std::uint64_t>(k)), &msg);
+    encoded[k].resize(static_cast<std::size_t>(msg.getEncodedSize()));
+    msg.encode(encoded[k].data(), 0, static_cast<int>(encoded[k].size()));
+  }
+  publisher.on_new_data(frames[0].view(0, clock.now_us()));  // warm up
+  source.deliver(encoded[0].data(), static_cast<std::uint32_t>(encoded[0].size()));
+  alloc_counter::arm();
+  for (int n = 1; n <= 30; ++n) {
+    publisher.on_new_data(frames[n % 2].view(static_cast<std::uint64_t>(n), clock.now_us()));
+    source.deliver(encoded[n % 2].data(), static_cast<std::uint32_t>(encoded[n % 2].size()));
+  }
+  const long allocations = alloc_counter::disarm();
+  assert_int_equal(publisher.published(), 31);
+  assert_int_equal(far_task.received(), 31);
+  assert_int_equal(far_task.corrupt(), 0);
+  expect_none(allocations, "frame publisher and LCM frame source, 30 frames of 0.73 MB");
+}
+
 }  // namespace
 
 int main() {
@@ -111,6 +155,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_estimator_task_processes_frames_without_allocating),
       cmocka_unit_test(test_arm_task_cycles_without_allocating),
+      cmocka_unit_test(test_frames_cross_lcm_without_allocating),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

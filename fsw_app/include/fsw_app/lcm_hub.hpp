@@ -106,24 +106,17 @@ class LcmHub {
   bool good() const { return lcm_.good(); }
   const std::string& url() const { return url_; }
 
-  template <typename Msg>
-  void subscribe(const std::string& channel, Mailbox<Msg>* box) {
+  // Each message on `channel` goes, still encoded, to receiver->deliver(data,
+  // size) on the dispatcher thread: a Mailbox, a MessageQueue, or anything
+  // with that member (the LCM frame source). Subscribe before start().
+  template <typename Receiver>
+  void subscribe(const std::string& channel, Receiver* receiver) {
     lcm_.subscribeFunction(
         channel,
-        +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Mailbox<Msg>* b) {
-          b->deliver(rbuf->data, rbuf->data_size);
+        +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Receiver* r) {
+          r->deliver(rbuf->data, rbuf->data_size);
         },
-        box);
-  }
-
-  template <typename Msg, std::size_t Capacity>
-  void subscribe(const std::string& channel, MessageQueue<Msg, Capacity>* queue) {
-    lcm_.subscribeFunction(
-        channel,
-        +[](const lcm::ReceiveBuffer* rbuf, const std::string&, MessageQueue<Msg, Capacity>* q) {
-          q->deliver(rbuf->data, rbuf->data_size);
-        },
-        queue);
+        receiver);
   }
 
   // Publishes already-encoded bytes; thread safe.
@@ -182,6 +175,7 @@ inline constexpr const char* kArmState = "ARM_STATE";
 inline constexpr const char* kEstimatorHealth = "ESTIMATOR_HEALTH";
 inline constexpr const char* kRobotPose = "ROBOT_POSE";
 inline constexpr const char* kBodyVelocityCommand = "BODY_VELOCITY_COMMAND";
+inline constexpr const char* kDepthFrame = "DEPTH_FRAME";
 }  // namespace channel
 
 }  // namespace fsw_app

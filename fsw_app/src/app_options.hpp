@@ -1,0 +1,56 @@
+#pragma once
+// fsw_app's command line.
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace fsw_app {
+
+// The tasks a process runs (a bit each); by default all four, one thread each.
+enum TaskBits : unsigned {
+  kCameraTask = 1u << 0,
+  kEstimatorTask = 1u << 1,
+  kArmTask = 1u << 2,
+  kManagerTask = 1u << 3,
+  kAllTasks = kCameraTask | kEstimatorTask | kArmTask | kManagerTask,
+};
+
+struct Options {
+  std::string config = "fsw_app/config/fsw_app.json";
+  std::string hal = "sim";
+  std::string scenario;
+  std::uint64_t seed = 1;
+  std::string lcm_url;
+  unsigned tasks = kAllTasks;
+  bool publish_frames = false;
+  std::string frames_from_log;
+  bool perch = false;
+  double timeout_s = 120.0;
+  double duration_s = 0.0;
+  std::string log;
+  std::string summary_json;
+  std::vector<std::pair<std::string, double>> faults;
+  long budget_us = -1;
+  std::string arm_port, gripper_port, camera_replay, handrail;
+  bool quiet = false;
+
+  bool runs(unsigned task) const { return (tasks & task) != 0; }
+  // The simulated world (flyer, rendered camera, devices on ptys) is built
+  // when a task here needs the simulated HAL's camera or devices.
+  bool needs_sim_world() const { return hal == "sim" && (runs(kCameraTask) || runs(kArmTask)); }
+};
+
+void print_usage(std::FILE* out);
+
+// Parses argv into *o. Returns an exit status when the program should stop
+// now (0 after --help, 2 after a usage error, which it reports), nothing
+// when it should run.
+std::optional<int> parse_options(int argc, char** argv, Options* o);
+
+// "camera,estimator" for the task bits.
+std::string task_names(unsigned tasks);
+
+}  // namespace fsw_app

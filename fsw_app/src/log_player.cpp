@@ -1,0 +1,147 @@
+#include "fsw_app/log_player.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "fsw_app/depth_frame_msg.hpp"
+
+namespace fsw_app {
+
+namespace {
+// A pause in the recording longer than this (the recorder stopped, say)
+// is played as this long.
+constexpr std::int64_t kLongestGapUs = 2000000;
+// The next event that reads whole, or null at the end of the file. LCM's
+// reader returns null both at the end and where an event is not followed
+// by a sync word (damaged bytes): it then drops that event, and the next
+// call scans forward to the next sync word. Each such stretch is counted.
+// Every null that is not the end consumed bytes, so this ends.
+const lcm::LogEvent* read_next_whole_event(lcm::LogFile& log, std::uint64_t* damaged) {
+  for (;;) {
+    if (const lcm::LogEvent* e = log.readNextEvent()) return e;
+    std::FILE* f = log.getFilePtr();
+    if (f == nullptr || std::feof(f) || std::ferror(f)) return nullptr;
+    ++*damaged;
+  }
+}
+
+}  // namespace
+
+LogPlayer::LogPlayer(LcmHub& hub, std::string path, const hal::Clock& clock,
+                     std::uint32_t max_width, std::uint32_t max_height)
+    : hub_(hub),
+      path_(std::move(path)),
+      clock_(clock),
+      max_points_(static_cast<std::size_t>(max_width) * max_height),
+      buffer_(depth_frame_encoded_size(max_points_)) {
+  reserve_points(&frame_, max_points_);
+}
+
+LogPlayer::~LogPlayer() {
+  stop();
+}
+
+bool LogPlayer::open(std::string* error) {
+  lcm::LogFile log(path_, "r");
+  if (!log.good()) {
+    *error = path_ + ": cannot open it as an LCM log";
+    return false;
+  }
+  frames_in_log_ = 0;
+  std::uint64_t damaged = 0;
+  while (const lcm::LogEvent* e = read_next_whole_event(log, &damaged)) {
+    if (e->channel == channel::kDepthFrame) ++frames_in_log_;
+  }
+  if (frames_in_log_ == 0) {
+    *error = path_ +
+             ": no DEPTH_FRAME message in this log; record one with fsw_app --publish-frames "
+             "--log FILE (or lcm-logger while the camera task publishes frames)";
+    return false;
+  }
+  return true;
+}
+
+void LogPlayer::start() {
+  if (running_.exchange(true)) return;
+  finished_ = false;
+  thread_ = std::thread([this] { play(); });
+}
+
+void LogPlayer::stop() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+}
+
+LogPlayerCounts LogPlayer::counts() const {
+  return {frames_.load(), bad_frames_.load(), poses_.load(), other_.load(), damaged_.load()};
+}
+
+void LogPlayer::wait_until(std::int64_t t_us) {
+  // In slices, so that stop() is heard within 50 ms.
+  while (running_.load()) {
+    const std::int64_t left_us = t_us - clock_.now_us();
+    if (left_us <= 0) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(std::min<std::int64_t>(left_us, 50000)));
+  }
+}
+
+void LogPlayer::play() {
+  lcm::LogFile log(path_, "r");
+  std::int64_t last_event_us = -1, play_at_us = clock_.now_us();
+  std::uint64_t damaged = 0;
+  while (running_.load() && log.good()) {
+    const lcm::LogEvent* e = read_next_whole_event(log, &damaged);
+    damaged_.store(damaged);
+    if (e == nullptr) break;
+    // Event stamps are the recorder's receive times; only their
+    // differences are used.
+    if (last_event_us >= 0) {
+      play_at_us += std::clamp<std::int64_t>(e->timestamp - last_event_us, 0, kLongestGapUs);
+    }
+    last_event_us = e->timestamp;
+    if (e->channel != channel::kDepthFrame && e->channel != channel::kRobotPose) {
+      other_.fetch_add(1);
+      continue;
+    }
+    wait_until(play_at_us);
+    if (!running_.load()) break;
+    play_event(*e);
+  }
+  finished_ = true;
+}
+
+void LogPlayer::play_event(const lcm::LogEvent& e) {
+  const auto* data = static_cast<const std::uint8_t*>(e.data);
+  const auto size = static_cast<std::size_t>(std::max(e.datalen, 0));
+  if (e.channel == channel::kDepthFrame) {
+    frames_.fetch_add(1);
+    if (decode_depth_frame(data, size, max_points_, &frame_) != FrameMsgStatus::kOk) {
+      bad_frames_.fetch_add(1);
+      hub_.publish_raw(e.channel, data, size);
+      return;
+    }
+    if (!have_offset_) {
+      time_offset_us_ = clock_.now_us() - frame_.capture_utime;
+      have_offset_ = true;
+    }
+    frame_.capture_utime += time_offset_us_;
+    frame_.utime += time_offset_us_;
+    const int n = frame_.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
+    if (n > 0) hub_.publish_raw(e.channel, buffer_.data(), static_cast<std::size_t>(n));
+    return;
+  }
+  poses_.fetch_add(1);
+  if (pose_.decode(data, 0, static_cast<int>(size)) < 0) {
+    hub_.publish_raw(e.channel, data, size);
+    return;
+  }
+  if (!have_offset_) {
+    time_offset_us_ = clock_.now_us() - pose_.utime;
+    have_offset_ = true;
+  }
+  pose_.utime += time_offset_us_;
+  const int n = pose_.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
+  if (n > 0) hub_.publish_raw(e.channel, buffer_.data(), static_cast<std::size_t>(n));
+}
+
+}  // namespace fsw_app

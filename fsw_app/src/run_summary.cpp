@@ -1,0 +1,120 @@
+#include "run_summary.hpp"
+
+namespace fsw_app {
+
+namespace {
+
+void print_frames(const RunSummary& s, std::FILE* out) {
+  const hrp::estimator_health_t& h = s.health;
+  std::fprintf(
+      out, "  frames              %lld received, %lld processed, %lld dropped, %lld corrupt\n",
+      static_cast<long long>(h.frames_received), static_cast<long long>(h.frames_processed),
+      static_cast<long long>(h.frames_dropped), static_cast<long long>(h.frames_corrupt));
+  std::fprintf(out,
+               "  deadline misses     %lld (budget %d us; processing median %d us, max %d us)\n",
+               static_cast<long long>(h.deadline_misses), h.budget_us, h.processing_median_us,
+               h.processing_max_us);
+  if (s.camera_longest_gap_ms >= 0.0) {
+    std::fprintf(out,
+                 "  frame pipeline      longest gap between frames %.0f ms, longest capture to "
+                 "estimate %.0f ms\n",
+                 s.camera_longest_gap_ms, s.estimator_longest_latency_ms);
+  }
+}
+
+void print_log(const Options& opt, const RunSummary& s, std::FILE* out) {
+  if (!opt.log.empty()) {
+    std::fprintf(out, "  LCM log             %s (%lld messages)\n", opt.log.c_str(),
+                 static_cast<long long>(s.log_messages));
+  }
+}
+
+}  // namespace
+
+void print_perch_summary(const Options& opt, const RunSummary& s, std::FILE* out) {
+  const bool fault = s.arm.state == hrp::arm_state_t::FAULT;
+  std::fprintf(out, "summary\n");
+  std::fprintf(out, "  result              %s\n",
+               s.perched ? "PERCHED" : (fault ? "FAULT" : "TIMEOUT"));
+  std::fprintf(out, "  arm state           %s%s%s\n", s.arm.state_name.c_str(),
+               s.arm.fault_text.empty() ? "" : ": ", s.arm.fault_text.c_str());
+  if (s.perched) std::fprintf(out, "  time to perch       %.1f s after PERCH\n", s.time_to_perch_s);
+  if (s.grasp_error_m >= 0.0) {
+    std::fprintf(out, "  gripper to bar      %.1f mm when the grip closed\n",
+                 s.grasp_error_m * 1000.0);
+  }
+  print_frames(s, out);
+  if (s.arm_loop) {
+    const CycleStats& a = *s.arm_loop;
+    std::fprintf(out,
+                 "  arm loop            %lld cycles, %lld overruns, longest gap %.0f ms, "
+                 "longest cycle %.0f ms, real-time %s\n",
+                 static_cast<long long>(a.cycles), static_cast<long long>(a.overruns),
+                 1e-3 * static_cast<double>(a.longest_gap_us),
+                 1e-3 * static_cast<double>(a.longest_cycle_us), hal::to_string(a.realtime));
+  }
+  if (s.servo_bus) {
+    const dynamixel::BusCounters& bc = *s.servo_bus;
+    std::fprintf(out,
+                 "  servo bus           %u transactions, %u retries, %u timeouts, %u bad "
+                 "checksums\n",
+                 bc.transactions, bc.retries, bc.timeouts, bc.bad_checksums);
+  }
+  if (s.gripper_retries)
+    std::fprintf(out, "  gripper board       %u retries\n", *s.gripper_retries);
+  print_log(opt, s, out);
+}
+
+void print_replay_summary(const Options& opt, const RunSummary& s, std::FILE* out) {
+  std::fprintf(out, "summary\n");
+  if (s.replay) {
+    const LogPlayerCounts& r = *s.replay;
+    std::fprintf(out,
+                 "  replayed            %s: %llu frames (%llu would not decode), %llu robot "
+                 "poses; %llu other messages not played\n",
+                 opt.frames_from_log.c_str(), static_cast<unsigned long long>(r.frames),
+                 static_cast<unsigned long long>(r.bad_frames),
+                 static_cast<unsigned long long>(r.poses),
+                 static_cast<unsigned long long>(r.other));
+    if (r.damaged > 0) {
+      std::fprintf(out,
+                   "  damaged log         %llu stretches of bytes that were no event skipped "
+                   "(each costs the event before it)\n",
+                   static_cast<unsigned long long>(r.damaged));
+    }
+  }
+  print_frames(s, out);
+  print_log(opt, s, out);
+}
+
+bool write_summary_json(const Options& opt, const RunSummary& s, const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) return false;
+  const hrp::estimator_health_t& h = s.health;
+  const CycleStats arm = s.arm_loop.value_or(CycleStats{-1, -1, -1000, -1000});
+  std::fprintf(
+      f,
+      "{\"seed\": %llu, \"scenario\": \"%s\", \"tasks\": \"%s\", \"perched\": %s, "
+      "\"success\": %s, \"arm_state\": \"%s\", \"fault\": \"%s\", \"fault_text\": \"%s\", "
+      "\"time_to_perch_s\": %.2f, \"grasp_error_m\": %.4f, \"frames_received\": %lld, "
+      "\"frames_processed\": %lld, \"frames_dropped\": %lld, \"frames_corrupt\": %lld, "
+      "\"deadline_misses\": %lld, \"processing_median_us\": %d, \"arm_cycles\": %lld, "
+      "\"arm_overruns\": %lld, \"arm_longest_gap_ms\": %.1f, \"arm_realtime\": \"%s\", "
+      "\"camera_longest_gap_ms\": %.1f, \"estimator_longest_latency_ms\": %.1f, "
+      "\"replayed_frames\": %lld, \"replayed_bad_frames\": %lld, \"replay_damaged\": %lld}\n",
+      static_cast<unsigned long long>(opt.seed), opt.scenario.c_str(),
+      task_names(opt.tasks).c_str(), s.perched ? "true" : "false", s.success ? "true" : "false",
+      s.arm.state_name.c_str(), s.arm.fault_name.c_str(), s.arm.fault_text.c_str(),
+      s.time_to_perch_s, s.grasp_error_m, static_cast<long long>(h.frames_received),
+      static_cast<long long>(h.frames_processed), static_cast<long long>(h.frames_dropped),
+      static_cast<long long>(h.frames_corrupt), static_cast<long long>(h.deadline_misses),
+      h.processing_median_us, static_cast<long long>(arm.cycles),
+      static_cast<long long>(arm.overruns), 1e-3 * static_cast<double>(arm.longest_gap_us),
+      s.arm_loop ? hal::to_string(arm.realtime) : "", s.camera_longest_gap_ms,
+      s.estimator_longest_latency_ms, s.replay ? static_cast<long long>(s.replay->frames) : -1LL,
+      s.replay ? static_cast<long long>(s.replay->bad_frames) : -1LL,
+      s.replay ? static_cast<long long>(s.replay->damaged) : -1LL);
+  return std::fclose(f) == 0;
+}
+
+}  // namespace fsw_app

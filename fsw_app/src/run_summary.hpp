@@ -1,0 +1,44 @@
+#pragma once
+// What fsw_app reports at the end of a run: on the terminal, and as one JSON
+// object (--summary-json) for tools/perch-runs and the tests. Figures of a
+// task that ran in another process are left out of the text and are -1 in
+// the JSON.
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include "app_options.hpp"
+#include "dynamixel/bus.hpp"
+#include "fsw_app/log_player.hpp"
+#include "fsw_app/periodic_thread.hpp"
+#include "hrp/arm_state_t.hpp"
+#include "hrp/estimator_health_t.hpp"
+
+namespace fsw_app {
+
+struct RunSummary {
+  bool perched = false;
+  bool success = false;              // perched within 1 cm of the bar
+  double time_to_perch_s = -1.0;     // from PERCH to PERCHED
+  double grasp_error_m = -1.0;       // known only with the simulated world here
+  hrp::arm_state_t arm{};            // the last ARM_STATE heard
+  hrp::estimator_health_t health{};  // the last ESTIMATOR_HEALTH heard
+  // Local tasks' own figures.
+  std::optional<CycleStats> arm_loop;
+  std::optional<dynamixel::BusCounters> servo_bus;
+  std::optional<std::uint32_t> gripper_retries;
+  double camera_longest_gap_ms = -1.0;
+  double estimator_longest_latency_ms = -1.0;
+  std::optional<LogPlayerCounts> replay;
+  std::int64_t log_messages = -1;
+};
+
+// The perch run's summary (result, times, frames, loops, links).
+void print_perch_summary(const Options& opt, const RunSummary& s, std::FILE* out);
+// A --frames-from-log run's summary (what was played, what the estimator did).
+void print_replay_summary(const Options& opt, const RunSummary& s, std::FILE* out);
+// False when the file cannot be written.
+bool write_summary_json(const Options& opt, const RunSummary& s, const std::string& path);
+
+}  // namespace fsw_app
