@@ -456,8 +456,10 @@ int main(int argc, char** argv) {
     summary.servo_bus = links.bus->counters();
     summary.gripper_retries = links.board->retries_used();
   }
-  if (camera_task && estimator_task) {
+  if (camera_task) {
     summary.camera_longest_gap_ms = 1e-3 * static_cast<double>(camera_task->longest_gap_us());
+  }
+  if (estimator_task) {
     summary.estimator_longest_latency_ms =
         1e-3 * static_cast<double>(estimator_task->counters().longest_latency_us);
   }

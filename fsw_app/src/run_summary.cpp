@@ -15,10 +15,12 @@ void print_frames(const RunSummary& s, std::FILE* out) {
                static_cast<long long>(h.deadline_misses), h.budget_us, h.processing_median_us,
                h.processing_max_us);
   if (s.camera_longest_gap_ms >= 0.0) {
-    std::fprintf(out,
-                 "  frame pipeline      longest gap between frames %.0f ms, longest capture to "
-                 "estimate %.0f ms\n",
-                 s.camera_longest_gap_ms, s.estimator_longest_latency_ms);
+    std::fprintf(out, "  frame pipeline      longest gap between frames %.0f ms",
+                 s.camera_longest_gap_ms);
+    if (s.estimator_longest_latency_ms >= 0.0) {
+      std::fprintf(out, ", longest capture to estimate %.0f ms", s.estimator_longest_latency_ms);
+    }
+    std::fprintf(out, "\n");
   }
 }
 

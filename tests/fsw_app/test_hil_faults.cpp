@@ -4,6 +4,7 @@
 // each fault the run must survive: every one ends in a defined state with
 // its reason on the arm state, never a hang or a crash.
 //   argv[1]: the fsw_app program
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -195,6 +196,65 @@ void test_estimator_over_budget(void**) {
   assert_true(o.number("deadline_misses") > 3);
 }
 
+// The tasks in two processes, as on a robot whose estimator runs on another
+// computer: this one the simulated world with the camera and arm tasks
+// (frames out on DEPTH_FRAME), the other the estimator and perch manager
+// (frames in over udpm). They meet only on LCM, and the robot perches.
+void test_tasks_split_across_two_processes_perch(void**) {
+  if (!g_udpm) {
+    std::printf("  NOTE: needs udpm between processes; not run here\n");
+    return;
+  }
+  Outcome o;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const std::string url = "udpm://239.255.76.67:" + std::to_string(g_port) + "?ttl=0";
+    const std::string other_summary = "/tmp/hrp_hil_split_" + std::to_string(getpid()) + ".json";
+    std::vector<std::string> args = {g_program,
+                                     "--config",
+                                     source("fsw_app/config/fsw_app.json"),
+                                     "--tasks",
+                                     "estimator,manager",
+                                     "--quiet",
+                                     "--lcm-url",
+                                     url,
+                                     "--summary-json",
+                                     other_summary};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t other = 0;
+    assert_int_equal(posix_spawn(&other, g_program.c_str(), nullptr, nullptr, argv.data(), environ),
+                     0);
+    o = run("approach-iss", {"--seed", "8", "--tasks", "camera,arm"});  // on the same port
+    kill(other, SIGTERM);  // it runs until told to stop, then writes its summary
+    int status = 0;
+    assert_int_equal(waitpid(other, &status, 0), other);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    std::ifstream in(other_summary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    hal::JsonValue estimator_side;
+    std::string error;
+    assert_true(hal::parse_json(text.str(), &estimator_side, &error));
+    std::remove(other_summary.c_str());
+    const hal::JsonValue* processed = estimator_side.find("frames_processed");
+    const hal::JsonValue* latency = estimator_side.find("estimator_longest_latency_ms");
+    assert_non_null(processed);
+    std::printf("  estimator process: %.0f frames processed, longest capture to estimate %.0f ms\n",
+                processed->number, latency ? latency->number : -1.0);
+    if (perched_within_1cm(o)) {
+      assert_true(processed->number > 10);
+      break;
+    }
+    const std::string stall = host_stall(o);
+    if (stall.empty() && latency && latency->number <= kEstimateStallMs) break;
+    std::printf("  NOTE: %s (host); running this case again\n",
+                stall.empty() ? "an estimate came late" : stall.c_str());
+  }
+  assert_true(o.flag("perched"));
+  assert_true(o.flag("success"));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -220,6 +280,7 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_handrail_occluded_for_a_second_is_ridden_out),
       cmocka_unit_test(test_burst_of_corrupt_frames_is_dropped_and_counted),
       cmocka_unit_test(test_estimator_over_budget),
+      cmocka_unit_test(test_tasks_split_across_two_processes_perch),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }
