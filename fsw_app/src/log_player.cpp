@@ -110,9 +110,25 @@ void LogPlayer::play() {
   finished_ = true;
 }
 
+std::int64_t LogPlayer::to_this_run(std::int64_t recorded_us) {
+  if (!have_offset_) {
+    time_offset_us_ = clock_.now_us() - recorded_us;
+    have_offset_ = true;
+  }
+  return recorded_us + time_offset_us_;
+}
+
+template <typename Msg>
+void LogPlayer::publish_encoded(const std::string& channel, const Msg& msg) {
+  const int n = msg.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
+  if (n > 0) hub_.publish_raw(channel, buffer_.data(), static_cast<std::size_t>(n));
+}
+
 void LogPlayer::play_event(const lcm::LogEvent& e) {
   const auto* data = static_cast<const std::uint8_t*>(e.data);
   const auto size = static_cast<std::size_t>(std::max(e.datalen, 0));
+  // A message that does not decode goes out as recorded: its receiver
+  // counts it.
   if (e.channel == channel::kDepthFrame) {
     frames_.fetch_add(1);
     if (decode_depth_frame(data, size, max_points_, &frame_) != FrameMsgStatus::kOk) {
@@ -120,14 +136,9 @@ void LogPlayer::play_event(const lcm::LogEvent& e) {
       hub_.publish_raw(e.channel, data, size);
       return;
     }
-    if (!have_offset_) {
-      time_offset_us_ = clock_.now_us() - frame_.capture_utime;
-      have_offset_ = true;
-    }
-    frame_.capture_utime += time_offset_us_;
-    frame_.utime += time_offset_us_;
-    const int n = frame_.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
-    if (n > 0) hub_.publish_raw(e.channel, buffer_.data(), static_cast<std::size_t>(n));
+    frame_.capture_utime = to_this_run(frame_.capture_utime);
+    frame_.utime = to_this_run(frame_.utime);
+    publish_encoded(e.channel, frame_);
     return;
   }
   poses_.fetch_add(1);
@@ -135,13 +146,8 @@ void LogPlayer::play_event(const lcm::LogEvent& e) {
     hub_.publish_raw(e.channel, data, size);
     return;
   }
-  if (!have_offset_) {
-    time_offset_us_ = clock_.now_us() - pose_.utime;
-    have_offset_ = true;
-  }
-  pose_.utime += time_offset_us_;
-  const int n = pose_.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
-  if (n > 0) hub_.publish_raw(e.channel, buffer_.data(), static_cast<std::size_t>(n));
+  pose_.utime = to_this_run(pose_.utime);
+  publish_encoded(e.channel, pose_);
 }
 
 }  // namespace fsw_app

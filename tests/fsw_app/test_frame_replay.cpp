@@ -209,9 +209,9 @@ struct Run {
   }
 };
 
-Run run_program(const std::string& program, std::vector<std::string> args,
-                const std::string& summary = "") {
-  const std::string out_path = work_path("out.txt");
+// Starts a program with stdout and stderr into out_path.
+pid_t start_program(const std::string& program, std::vector<std::string> args,
+                    const std::string& out_path) {
   args.insert(args.begin(), program);
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -222,10 +222,14 @@ Run run_program(const std::string& program, std::vector<std::string> args,
                                    0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
   pid_t pid = 0;
-  Run r;
-  if (summary.size()) std::remove(summary.c_str());
   assert_int_equal(posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+// Waits for it; its output, exit status and (when named) JSON summary.
+Run finish_program(pid_t pid, const std::string& out_path, const std::string& summary = "") {
+  Run r;
   int status = 0;
   assert_int_equal(waitpid(pid, &status, 0), pid);
   assert_true(WIFEXITED(status));  // never a crash
@@ -243,14 +247,27 @@ Run run_program(const std::string& program, std::vector<std::string> args,
   return r;
 }
 
-Run run_fsw_app(std::vector<std::string> args, const std::string& summary = "") {
+Run run_program(const std::string& program, std::vector<std::string> args,
+                const std::string& summary = "") {
+  const std::string out_path = work_path("out.txt");
+  if (!summary.empty()) std::remove(summary.c_str());
+  return finish_program(start_program(program, std::move(args), out_path), out_path, summary);
+}
+
+// fsw_app's arguments: the shipped configuration, quiet, and the summary.
+std::vector<std::string> fsw_app_args(const std::vector<std::string>& args,
+                                      const std::string& summary) {
   std::vector<std::string> all = {"--config", source("fsw_app/config/fsw_app.json"), "--quiet"};
   all.insert(all.end(), args.begin(), args.end());
   if (!summary.empty()) {
     all.push_back("--summary-json");
     all.push_back(summary);
   }
-  return run_program(g_program, all, summary);
+  return all;
+}
+
+Run run_fsw_app(const std::vector<std::string>& args, const std::string& summary = "") {
+  return run_program(g_program, fsw_app_args(args, summary), summary);
 }
 
 struct Estimate {
@@ -314,16 +331,33 @@ std::string record_run() {
   return rec;
 }
 
+struct Replay {
+  Run run;
+  std::map<std::int64_t, Estimate> estimates;
+};
+
+// Replays `log` into an estimator running alone (memq) and reads back what
+// it estimated.
+Replay replay_into_estimator(const std::string& log, const std::string& name) {
+  const std::string replay_log = work_path(name + ".lcm");
+  Replay out;
+  out.run = run_fsw_app({"--frames-from-log", log, "--lcm-url", "memq://", "--log", replay_log},
+                        work_path(name + ".json"));
+  std::printf("%s", out.run.output.c_str());
+  assert_int_equal(out.run.exit_status, 0);
+  int depth_frames = 0;
+  out.estimates = read_estimates(replay_log, &depth_frames);
+  std::remove(replay_log.c_str());
+  return out;
+}
+
 void test_recorded_run_replays_into_the_estimator_alone(void**) {
   const std::string rec = record_run();
-  const std::string rep = work_path("rep.lcm");
-  const Run r = run_fsw_app({"--frames-from-log", rec, "--lcm-url", "memq://", "--log", rep},
-                            work_path("rep.json"));
-  std::printf("%s", r.output.c_str());
-  assert_int_equal(r.exit_status, 0);
-  int rec_frames = 0, rep_frames = 0;
+  const Replay replay = replay_into_estimator(rec, "rep");
+  const Run& r = replay.run;
+  const auto& replayed = replay.estimates;
+  int rec_frames = 0;
   const auto recorded = read_estimates(rec, &rec_frames);
-  const auto replayed = read_estimates(rep, &rep_frames);
   assert_int_equal(r.number("replayed_frames"), rec_frames);
   assert_int_equal(r.number("replayed_bad_frames"), 0);
   assert_int_equal(r.number("frames_corrupt"), 0);
@@ -337,7 +371,6 @@ void test_recorded_run_replays_into_the_estimator_alone(void**) {
   int found = 0;
   for (const auto& [id, e] : replayed) found += e.state != 0 ? 1 : 0;
   assert_true(found >= 2);  // not only "no handrail" frames
-  std::remove(rep.c_str());
   std::remove(rec.c_str());
 }
 
@@ -354,26 +387,24 @@ void test_damaged_log_replays_the_rest(void**) {
     assert_true(in.good() && out.good());
     int frames = 0;
     while (const lcm::LogEvent* e = in.readNextEvent()) {
+      const bool frame = e->channel == "DEPTH_FRAME";
+      frames += frame ? 1 : 0;
       lcm::LogEvent copy = *e;
-      if (e->channel == "DEPTH_FRAME" && ++frames == 3) copy.datalen = e->datalen / 2;
+      if (frame && frames == 3) copy.datalen = e->datalen / 2;
       assert_int_equal(out.writeEvent(&copy), 0);
-      if (frames == 5 && e->channel == "DEPTH_FRAME") {
+      if (frame && frames == 5) {
         // Bytes that are no event at all: the reader must find the next.
         std::fflush(out.getFilePtr());
-        const char junk[] = "not an LCM event, 37 bytes of junk..";
+        const char junk[] = "not an LCM event, only junk bytes";
         std::fwrite(junk, 1, sizeof junk, out.getFilePtr());
-        frames = 6;
       }
     }
   }
-  const std::string rep = work_path("rep_damaged.lcm");
-  const Run r = run_fsw_app({"--frames-from-log", damaged, "--lcm-url", "memq://", "--log", rep},
-                            work_path("damaged.json"));
-  std::printf("%s", r.output.c_str());
-  assert_int_equal(r.exit_status, 0);
-  int rec_frames = 0, rep_frames = 0;
+  const Replay replay = replay_into_estimator(damaged, "rep_damaged");
+  const Run& r = replay.run;
+  const auto& replayed = replay.estimates;
+  int rec_frames = 0;
   const auto recorded = read_estimates(rec, &rec_frames);
-  const auto replayed = read_estimates(rep, &rep_frames);
   assert_int_equal(r.number("replay_damaged"), 1);
   assert_int_equal(r.number("replayed_frames"), rec_frames - 1);
   assert_int_equal(r.number("replayed_bad_frames"), 1);
@@ -382,7 +413,6 @@ void test_damaged_log_replays_the_rest(void**) {
   assert_true(r.output.find("TRUNCATED") != std::string::npos);
   assert_int_equal(compare_estimates(recorded, replayed), rec_frames - 2);
   assert_true(replayed.count(4) == 0);  // frame ids count from 0: the fifth frame
-  std::remove(rep.c_str());
   std::remove(damaged.c_str());
   std::remove(rec.c_str());
 }
@@ -439,31 +469,16 @@ void test_lcm_logplayer_feeds_an_estimator_process(void**) {
   const std::string rec = record_run();
   const std::string live = work_path("live.lcm");
   const std::string summary = work_path("live.json");
-  std::vector<std::string> args = {g_program,
-                                   "--config",
-                                   source("fsw_app/config/fsw_app.json"),
-                                   "--quiet",
-                                   "--tasks",
-                                   "estimator",
-                                   "--lcm-url",
-                                   url,
-                                   "--duration",
-                                   "6",
-                                   "--log",
-                                   live,
-                                   "--summary-json",
-                                   summary};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  assert_int_equal(posix_spawn(&pid, g_program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  const std::string out_path = work_path("live.txt");
+  const pid_t pid = start_program(
+      g_program,
+      fsw_app_args({"--tasks", "estimator", "--lcm-url", url, "--duration", "6", "--log", live},
+                   summary),
+      out_path);
   sleep(1);  // its subscription in place
   const Run player = run_program("lcm-logplayer", {"-e", "DEPTH_FRAME|ROBOT_POSE", "-l", url, rec});
   assert_int_equal(player.exit_status, 0);
-  int status = 0;
-  assert_int_equal(waitpid(pid, &status, 0), pid);
-  assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  assert_int_equal(finish_program(pid, out_path, summary).exit_status, 0);
   int rec_frames = 0, live_frames = 0;
   const int compared =
       compare_estimates(read_estimates(rec, &rec_frames), read_estimates(live, &live_frames));
@@ -473,7 +488,6 @@ void test_lcm_logplayer_feeds_an_estimator_process(void**) {
               rec_frames);
   assert_true(compared >= 1);
   std::remove(live.c_str());
-  std::remove(summary.c_str());
   std::remove(rec.c_str());
 }
 

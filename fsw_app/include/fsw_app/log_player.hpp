@@ -55,6 +55,11 @@ class LogPlayer {
   void play();
   void wait_until(std::int64_t t_us);
   void play_event(const lcm::LogEvent& event);
+  // A recorded monotonic time on this run's clock; the first message
+  // played fixes the offset.
+  std::int64_t to_this_run(std::int64_t recorded_us);
+  template <typename Msg>
+  void publish_encoded(const std::string& channel, const Msg& msg);
 
   LcmHub& hub_;
   std::string path_;
