@@ -10,9 +10,6 @@
 // with a message naming them. Over udpm, when the host has multicast:
 // lcm-logplayer feeds an estimator-only fsw_app.
 //   argv[1]: the fsw_app program
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <lcm/lcm-cpp.hpp>
@@ -24,17 +21,16 @@
 #include <string>
 #include <vector>
 
+#include "child_process.hpp"
 #include "cmocka_cpp.hpp"
 #include "fsw_app/camera_task.hpp"
 #include "fsw_app/depth_frame_msg.hpp"
 #include "fsw_app/frame_publisher.hpp"
 #include "fsw_app/lcm_depth_camera.hpp"
-#include "hal/json.hpp"
 #include "hal/pcd_io.hpp"
 #include "hrp/handrail_estimate_t.hpp"
+#include "summary_json.hpp"
 #include "test_data.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -202,43 +198,19 @@ void test_frames_cross_lcm_and_bad_messages_are_counted(void**) {
 struct Run {
   int exit_status = -1;
   std::string output;  // stdout and stderr
-  hal::JsonValue summary;
-  double number(const char* key) const {
-    const hal::JsonValue* v = summary.find(key);
-    return v && v->is_number() ? v->number : -1.0;
-  }
+  testing_support::Summary summary;
+  double number(const char* key) const { return summary.number(key); }
 };
-
-// Starts a program with stdout and stderr into out_path.
-pid_t start_program(const std::string& program, std::vector<std::string> args,
-                    const std::string& out_path) {
-  args.insert(args.begin(), program);
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  assert_int_equal(posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  return pid;
-}
 
 // Waits for it; its output, exit status and (when named) JSON summary.
 Run finish_program(pid_t pid, const std::string& out_path, const std::string& summary = "") {
   Run r;
-  int status = 0;
-  assert_int_equal(waitpid(pid, &status, 0), pid);
-  assert_true(WIFEXITED(status));  // never a crash
-  r.exit_status = WEXITSTATUS(status);
+  r.exit_status = testing_support::wait_for_exit(pid);
   r.output = testing_support::read_text(out_path);
   std::remove(out_path.c_str());
   if (!summary.empty()) {
     std::string error;
-    if (!hal::parse_json(testing_support::read_text(summary), &r.summary, &error)) {
+    if (!testing_support::read_summary(summary, &r.summary, &error)) {
       print_error("no summary (%s): %s\n%s\n", summary.c_str(), error.c_str(), r.output.c_str());
       fail();
     }
@@ -251,7 +223,8 @@ Run run_program(const std::string& program, std::vector<std::string> args,
                 const std::string& summary = "") {
   const std::string out_path = work_path("out.txt");
   if (!summary.empty()) std::remove(summary.c_str());
-  return finish_program(start_program(program, std::move(args), out_path), out_path, summary);
+  return finish_program(testing_support::spawn_program(program, std::move(args), out_path),
+                        out_path, summary);
 }
 
 // fsw_app's arguments: the shipped configuration, quiet, and the summary.
@@ -500,7 +473,7 @@ void test_lcm_logplayer_feeds_an_estimator_process(void**) {
   const std::string live = work_path("live.lcm");
   const std::string summary = work_path("live.json");
   const std::string out_path = work_path("live.txt");
-  const pid_t pid = start_program(
+  const pid_t pid = testing_support::spawn_program(
       g_program,
       fsw_app_args({"--tasks", "estimator", "--lcm-url", url, "--duration", "6", "--log", live},
                    summary),

@@ -5,22 +5,17 @@
 // its reason on the arm state, never a hang or a crash.
 //   argv[1]: the fsw_app program
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "child_process.hpp"
 #include "cmocka_cpp.hpp"
-#include "hal/json.hpp"
-
-extern char** environ;
+#include "summary_json.hpp"
 
 namespace {
 
@@ -33,22 +28,8 @@ std::string source(const std::string& rel) {
   return std::string(d ? d : ".") + "/" + rel;
 }
 
-struct Outcome {
+struct Outcome : testing_support::Summary {
   int exit_status = -1;
-  hal::JsonValue summary;
-  const hal::JsonValue* get(const char* key) const { return summary.find(key); }
-  std::string text(const char* key) const {
-    const hal::JsonValue* v = get(key);
-    return v && v->is_string() ? v->text : "";
-  }
-  double number(const char* key) const {
-    const hal::JsonValue* v = get(key);
-    return v && v->is_number() ? v->number : -1.0;
-  }
-  bool flag(const char* key) const {
-    const hal::JsonValue* v = get(key);
-    return v && v->is_bool() && v->boolean;
-  }
 };
 
 // Runs one perch with extra arguments; each run gets its own udpm port so
@@ -58,7 +39,6 @@ Outcome run(const std::string& scenario, std::vector<std::string> extra) {
       "/tmp/hrp_hil_" + std::to_string(getpid()) + "_" + std::to_string(g_port) + ".json";
   std::remove(summary.c_str());
   std::vector<std::string> args = {
-      g_program,
       "--config",
       source("fsw_app/config/fsw_app.json"),
       "--hal",
@@ -74,21 +54,10 @@ Outcome run(const std::string& scenario, std::vector<std::string> extra) {
       "--summary-json",
       summary};
   args.insert(args.end(), extra.begin(), extra.end());
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
   Outcome out;
-  assert_int_equal(posix_spawn(&pid, g_program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
-  int status = 0;
-  assert_int_equal(waitpid(pid, &status, 0), pid);
-  assert_true(WIFEXITED(status));  // never a crash
-  out.exit_status = WEXITSTATUS(status);
-  std::ifstream in(summary);
-  std::ostringstream text;
-  text << in.rdbuf();
+  out.exit_status = testing_support::run_to_exit(g_program, args);
   std::string error;
-  if (!hal::parse_json(text.str(), &out.summary, &error)) {
+  if (!testing_support::read_summary(summary, &out, &error)) {
     print_error("no summary from the run (%s): %s\n", summary.c_str(), error.c_str());
     fail();
   }
@@ -209,45 +178,27 @@ void test_tasks_split_across_two_processes_perch(void**) {
   for (int attempt = 0; attempt < 3; ++attempt) {
     const std::string url = "udpm://239.255.76.67:" + std::to_string(g_port) + "?ttl=0";
     const std::string other_summary = "/tmp/hrp_hil_split_" + std::to_string(getpid()) + ".json";
-    std::vector<std::string> args = {g_program,
-                                     "--config",
-                                     source("fsw_app/config/fsw_app.json"),
-                                     "--tasks",
-                                     "estimator,manager",
-                                     "--quiet",
-                                     "--lcm-url",
-                                     url,
-                                     "--summary-json",
-                                     other_summary};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t other = 0;
-    assert_int_equal(posix_spawn(&other, g_program.c_str(), nullptr, nullptr, argv.data(), environ),
-                     0);
+    const pid_t other = testing_support::spawn_program(
+        g_program,
+        {"--config", source("fsw_app/config/fsw_app.json"), "--tasks", "estimator,manager",
+         "--quiet", "--lcm-url", url, "--summary-json", other_summary});
     o = run("approach-iss", {"--seed", "8", "--tasks", "camera,arm"});  // on the same port
     kill(other, SIGTERM);  // it runs until told to stop, then writes its summary
-    int status = 0;
-    assert_int_equal(waitpid(other, &status, 0), other);
-    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    std::ifstream in(other_summary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    hal::JsonValue estimator_side;
+    assert_int_equal(testing_support::wait_for_exit(other), 0);
+    testing_support::Summary estimator_side;
     std::string error;
-    assert_true(hal::parse_json(text.str(), &estimator_side, &error));
+    assert_true(testing_support::read_summary(other_summary, &estimator_side, &error));
     std::remove(other_summary.c_str());
-    const hal::JsonValue* processed = estimator_side.find("frames_processed");
-    const hal::JsonValue* latency = estimator_side.find("estimator_longest_latency_ms");
-    assert_non_null(processed);
+    const double processed = estimator_side.number("frames_processed");
+    const double latency_ms = estimator_side.number("estimator_longest_latency_ms");
     std::printf("  estimator process: %.0f frames processed, longest capture to estimate %.0f ms\n",
-                processed->number, latency ? latency->number : -1.0);
+                processed, latency_ms);
     if (perched_within_1cm(o)) {
-      assert_true(processed->number > 10);
+      assert_true(processed > 10);
       break;
     }
     const std::string stall = host_stall(o);
-    if (stall.empty() && latency && latency->number <= kEstimateStallMs) break;
+    if (stall.empty() && latency_ms >= 0.0 && latency_ms <= kEstimateStallMs) break;
     std::printf("  NOTE: %s (host); running this case again\n",
                 stall.empty() ? "an estimate came late" : stall.c_str());
   }

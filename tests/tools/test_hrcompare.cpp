@@ -2,8 +2,6 @@
 // position or state difference fails, a file that is not a log is a usage
 // error naming it.
 //   argv[1]: the hrcompare program
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <lcm/lcm-cpp.hpp>
@@ -12,10 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "child_process.hpp"
 #include "cmocka_cpp.hpp"
 #include "hrp/handrail_estimate_t.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -58,16 +55,7 @@ std::string write_log(const char* name, int count, int odd_one, int odd_state, d
 }
 
 int run(std::vector<std::string> args) {
-  args.insert(args.begin(), g_program);
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  assert_int_equal(posix_spawn(&pid, g_program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
-  int status = 0;
-  assert_int_equal(waitpid(pid, &status, 0), pid);
-  assert_true(WIFEXITED(status));
-  return WEXITSTATUS(status);
+  return testing_support::run_to_exit(g_program, std::move(args));
 }
 
 void test_agreeing_logs_pass(void**) {
