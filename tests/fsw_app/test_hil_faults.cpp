@@ -74,14 +74,17 @@ Outcome run(const std::string& scenario, std::vector<std::string> extra) {
 // A run is real time on a host that may be shared: when its outcome is
 // not the expected one and the program's own figures show a task stalled
 // by the host, the host is to blame, not the code under test; the run is
-// repeated (at most twice), and says so. A wrong outcome with every task
-// on time fails at once. On time, the arm loop's gaps stay under 80 ms
-// (period 50 ms), the frames come every 200 ms (5 fps; a burst of corrupt
-// frames is still delivered, so still timed) and an estimate follows its
-// capture within 65 ms (render, ring, detect; debug build).
+// repeated (at most kStallRepeats times), and says so. This VM has bad
+// spells: once in CI three runs in a row stalled (arm loop 753, 270 and
+// 548 ms) while the cases before and after ran on time. A wrong outcome
+// with every task on time fails at once. On time, the arm loop's gaps stay
+// under 80 ms (period 50 ms), the frames come every 200 ms (5 fps; a burst
+// of corrupt frames is still delivered, so still timed) and an estimate
+// follows its capture within 65 ms (render, ring, detect; debug build).
 constexpr double kArmStallMs = 150.0;
 constexpr double kFrameStallMs = 500.0;
 constexpr double kEstimateStallMs = 200.0;  // one frame period
+constexpr int kStallRepeats = 4;
 
 std::string host_stall(const Outcome& o) {
   char why[160];
@@ -103,7 +106,7 @@ template <typename Expect>
 Outcome run_expecting(const std::string& scenario, const std::vector<std::string>& extra,
                       Expect expected) {
   Outcome o = run(scenario, extra);
-  for (int again = 0; again < 2 && !expected(o); ++again) {
+  for (int again = 0; again < kStallRepeats && !expected(o); ++again) {
     const std::string stall = host_stall(o);
     if (stall.empty()) break;
     std::printf("  NOTE: %s (host); running this case again\n", stall.c_str());
@@ -175,7 +178,7 @@ void test_tasks_split_across_two_processes_perch(void**) {
     return;
   }
   Outcome o;
-  for (int attempt = 0; attempt < 3; ++attempt) {
+  for (int attempt = 0; attempt <= kStallRepeats; ++attempt) {
     const std::string url = "udpm://239.255.76.67:" + std::to_string(g_port) + "?ttl=0";
     const std::string other_summary = "/tmp/hrp_hil_split_" + std::to_string(getpid()) + ".json";
     const pid_t other = testing_support::spawn_program(
