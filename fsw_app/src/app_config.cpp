@@ -1,17 +1,17 @@
 #include "fsw_app/app_config.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
-#include "detector_config_io.hpp"
-#include "hal/json.hpp"
+#include "formats/detector_config_io.hpp"
+#include "formats/json.hpp"
+#include "formats/text_file.hpp"
 #include "hal/use_case.hpp"
 
 namespace fsw_app {
 namespace {
 
-using hal::JsonValue;
+using formats::JsonValue;
 constexpr double kDeg = M_PI / 180.0;
 
 // Reads the members of one object, naming "section.key" and the line in
@@ -142,7 +142,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
                       std::string* error) {
   JsonValue root;
   std::string json_error;
-  if (!hal::parse_json(text, &root, &json_error)) {
+  if (!formats::parse_json(text, &root, &json_error)) {
     *error = path + ":" + json_error.substr(5);
     return false;
   }
@@ -183,7 +183,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     }
   }
   if (const JsonValue* v = top.object("estimator")) {
-    if (!tools::read_detector_config(*v, path, &c.estimator, error)) return false;
+    if (!formats::read_detector_config(*v, path, &c.estimator, error)) return false;
   }
   if (const JsonValue* v = top.object("arm")) {
     Section s(*v, "arm", path, error);
@@ -341,14 +341,12 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
 }
 
 bool load_app_config(const std::string& path, AppConfig* config, std::string* error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    *error = path + ": cannot open the configuration file";
+  std::string text;
+  if (formats::read_file_bounded(path, formats::kMaxTextFileBytes, &text, error) !=
+      formats::FileStatus::kOk) {
     return false;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_app_config(text.str(), path, config, error);
+  return parse_app_config(text, path, config, error);
 }
 
 }  // namespace fsw_app

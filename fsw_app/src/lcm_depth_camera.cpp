@@ -72,6 +72,22 @@ hal::CameraStatus LcmDepthCamera::max_frame_size(std::uint32_t* width,
   return hal::CameraStatus::kSuccess;
 }
 
+namespace {
+
+InputReject input_reject_of(FrameMsgStatus status) {
+  switch (status) {
+    case FrameMsgStatus::kTrailingBytes:
+      return InputReject::kTrailingBytes;
+    case FrameMsgStatus::kBadSize:
+    case FrameMsgStatus::kTooLarge:
+      return InputReject::kOutOfRange;
+    default:
+      return InputReject::kUndecodable;
+  }
+}
+
+}  // namespace
+
 void LcmDepthCamera::deliver(const void* data, std::uint32_t size) {
   if (!capturing_.load() || listener_ == nullptr) return;
   const FrameMsgStatus status =
@@ -80,7 +96,9 @@ void LcmDepthCamera::deliver(const void* data, std::uint32_t size) {
   if (status == FrameMsgStatus::kOk) {
     from_msg(msg_, points_.get(), &frame);
     delivered_.fetch_add(1);
+    counts_.accepted.fetch_add(1, std::memory_order_relaxed);
   } else {
+    counts_.count_rejected(input_reject_of(status));
     // The frame's header fields may be garbage too: pass on no points, so
     // that the camera task drops and counts it.
     last_rejection_.store(status);

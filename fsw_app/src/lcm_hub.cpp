@@ -1,5 +1,7 @@
 #include "fsw_app/lcm_hub.hpp"
 
+#include <cstring>
+
 namespace fsw_app {
 
 LcmHub::LcmHub(const std::string& url) : url_(url), lcm_(url) {}
@@ -23,6 +25,15 @@ void LcmHub::subscribe_all(RawSink sink, void* user) {
         hub->sink_(hub->sink_user_, channel, *rbuf);
       },
       this);
+}
+
+void LcmHub::register_input(const char* channel, const InputCounts* counts) {
+  for (std::size_t k = 0; k < input_count_; ++k) {
+    if (std::strcmp(inputs_[k].channel, channel) == 0) return;
+  }
+  // More channels than the table holds are still checked, only not listed;
+  // the table is sized above every channel the program has.
+  if (input_count_ < kMaxCheckedChannels) inputs_[input_count_++] = ChannelInput{channel, counts};
 }
 
 void LcmHub::start() {

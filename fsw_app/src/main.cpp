@@ -31,15 +31,17 @@
 #include "fsw_app/camera_task.hpp"
 #include "fsw_app/estimator_task.hpp"
 #include "fsw_app/frame_publisher.hpp"
+#include "fsw_app/input_health.hpp"
 #include "fsw_app/lcm_depth_camera.hpp"
 #include "fsw_app/lcm_hub.hpp"
 #include "fsw_app/log_player.hpp"
 #include "fsw_app/perch_manager.hpp"
 #include "gripper/gripper_board.hpp"
 #include "hal/linux_serial_port.hpp"
-#include "hal/pcd_replay_camera.hpp"
 #include "hal/realtime.hpp"
 #include "hal/use_case.hpp"
+#include "replay_camera/pcd_replay_camera.hpp"
+#include "run_log.hpp"
 #include "run_summary.hpp"
 #ifdef HRP_WITH_SIM
 #include "hil_world.hpp"
@@ -50,28 +52,42 @@ namespace {
 
 using fsw_app::Options;
 
-volatile sig_atomic_t g_stop = 0;
-void on_signal(int) {
-  g_stop = 1;
+// SIGINT and SIGTERM are handled from the first line of main. Before the
+// tasks start (options, configuration, scenario, devices) nothing has
+// moved, so a signal ends the program at once; a configuration that takes
+// long to read cannot hold it up. Once the tasks run, a signal asks the run
+// loop for a safe stop (during a perch: the perch sequence's own ABORT,
+// then the arm at rest); a second one ends the program at once.
+volatile sig_atomic_t g_stop = 0;  // the signal number, 0 while none came
+volatile sig_atomic_t g_tasks_running = 0;
+void on_signal(int sig) {
+  if (!g_tasks_running || g_stop) {
+    static const char kMessage[] = "fsw_app: stopped by a signal, at once\n";
+    const ssize_t ignored = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    (void)ignored;
+    _exit(128 + sig);
+  }
+  g_stop = sig;
 }
 
-// Every message of the run into an LCM log (from the dispatcher thread).
-struct RunLog {
-  std::unique_ptr<lcm::LogFile> file;
-  std::mutex mutex;
-  std::int64_t events = 0;
-  static void sink(void* user, const std::string& channel, const lcm::ReceiveBuffer& rbuf) {
-    auto* self = static_cast<RunLog*>(user);
-    std::lock_guard<std::mutex> lock(self->mutex);
-    lcm::LogEvent e;
-    e.eventnum = self->events++;
-    e.timestamp = rbuf.recv_utime;
-    e.channel = channel;
-    e.datalen = static_cast<std::int32_t>(rbuf.data_size);
-    e.data = rbuf.data;
-    self->file->writeEvent(&e);
-  }
-};
+// The arm states in which nothing moves: where a safe stop may end.
+bool arm_at_rest(std::int8_t state) {
+  return state == hrp::arm_state_t::INIT || state == hrp::arm_state_t::STOWED ||
+         state == hrp::arm_state_t::PERCHED || state == hrp::arm_state_t::FAULT;
+}
+constexpr std::int32_t kPerchSequence = 1;
+constexpr std::int32_t kStopSequence = 2;
+// How long a safe stop may take: an ABORT during the approach opens, backs
+// off and stows (about 10 s in the simulator).
+constexpr double kSafeStopLimit_s = 30.0;
+
+void install_signal_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
 
 // The arm task's links: the two serial ports and the drivers on them.
 struct ArmLinks {
@@ -127,23 +143,31 @@ bool open_arm_links(const fsw_app::AppConfig& cfg, const std::string& servo_port
 // kernel's default receive buffer (about 200 kB) most frames lose one. An
 // estimator fed over udpm asks LCM for a 4 MB buffer unless the URL names
 // one, and says so when the kernel will not grant that much.
-std::string with_frame_receive_buffer(const std::string& url) {
+// A process that hears depth frames over udpm (an estimator fed from
+// another process, or a log that records this process's own frames) needs
+// a socket receive buffer of several frames: with the kernel's default of
+// about 200 kB, 8 of 89 frames reached the log. Adds recv_buf_size to the
+// URL. False, with *error saying what to set, when the kernel's limit is
+// below it.
+bool with_frame_receive_buffer(std::string* url, std::string* error) {
   constexpr long kWantedBytes = 4L << 20;
-  if (url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos) return url;
+  if (url->rfind("udpm://", 0) != 0 || url->find("recv_buf_size=") != std::string::npos) {
+    return true;
+  }
   long rmem_max = -1;
   if (std::FILE* f = std::fopen("/proc/sys/net/core/rmem_max", "r")) {
     if (std::fscanf(f, "%ld", &rmem_max) != 1) rmem_max = -1;
     std::fclose(f);
   }
+  *url += (url->find('?') == std::string::npos ? "?" : "&") + std::string("recv_buf_size=") +
+          std::to_string(kWantedBytes);
   if (rmem_max >= 0 && rmem_max < kWantedBytes) {
-    std::fprintf(stderr,
-                 "fsw_app: depth frames over udpm want a 4 MB receive buffer but the kernel "
-                 "allows %ld bytes, so frames will be lost: sudo sysctl -w "
-                 "net.core.rmem_max=%ld\n",
-                 rmem_max, kWantedBytes);
+    *error = "depth frames over udpm want a 4 MB receive buffer but the kernel allows " +
+             std::to_string(rmem_max) + " bytes, so frames would be lost: sudo sysctl -w " +
+             "net.core.rmem_max=" + std::to_string(kWantedBytes);
+    return false;
   }
-  return url + (url.find('?') == std::string::npos ? "?" : "&") +
-         "recv_buf_size=" + std::to_string(kWantedBytes);
+  return true;
 }
 
 const char* state_name(std::int8_t s) {
@@ -153,10 +177,9 @@ const char* state_name(std::int8_t s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  install_signal_handlers();
   Options opt;
   if (auto rc = fsw_app::parse_options(argc, argv, &opt)) return *rc;
-  signal(SIGINT, on_signal);
-  signal(SIGTERM, on_signal);
 
   fsw_app::AppConfig cfg;
   std::string error;
@@ -165,9 +188,24 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (!opt.lcm_url.empty()) cfg.lcm_url = opt.lcm_url;
-  if (opt.runs(fsw_app::kEstimatorTask) && !opt.runs(fsw_app::kCameraTask) &&
-      opt.frames_from_log.empty()) {
-    cfg.lcm_url = with_frame_receive_buffer(cfg.lcm_url);
+  const bool sends_frames = (opt.runs(fsw_app::kCameraTask) &&
+                             (opt.publish_frames || !opt.runs(fsw_app::kEstimatorTask))) ||
+                            !opt.frames_from_log.empty();
+  const bool estimator_fed_over_lcm = opt.runs(fsw_app::kEstimatorTask) &&
+                                      !opt.runs(fsw_app::kCameraTask) &&
+                                      opt.frames_from_log.empty();
+  if (estimator_fed_over_lcm || (!opt.log.empty() && sends_frames)) {
+    if (!with_frame_receive_buffer(&cfg.lcm_url, &error)) {
+      if (!opt.log.empty() && sends_frames) {
+        // Recording frames that would be lost is refused outright.
+        std::fprintf(stderr,
+                     "fsw_app: %s; or record in-process with --lcm-url memq:// (--log "
+                     "still records every message)\n",
+                     error.c_str());
+        return 2;
+      }
+      std::fprintf(stderr, "fsw_app: %s\n", error.c_str());
+    }
   }
   if (!opt.handrail.empty()) {
     const float length = cfg.estimator.handrail.bar_length_m;
@@ -186,14 +224,13 @@ int main(int argc, char** argv) {
                  cfg.lcm_url.c_str());
     return 1;
   }
-  RunLog log;
+  fsw_app::RunLog log;
   if (!opt.log.empty()) {
-    log.file = std::make_unique<lcm::LogFile>(opt.log, "w");
-    if (!log.file->good()) {
-      std::fprintf(stderr, "fsw_app: %s: cannot write the LCM log\n", opt.log.c_str());
+    if (!log.open(opt.log, &error)) {
+      std::fprintf(stderr, "fsw_app: %s\n", error.c_str());
       return 1;
     }
-    hub.subscribe_all(&RunLog::sink, &log);
+    hub.subscribe_all(&fsw_app::RunLog::sink, &log);
   }
   hal::MonotonicClock clock;
   const bool sim = opt.hal == "sim";
@@ -243,10 +280,18 @@ int main(int argc, char** argv) {
     if (world) camera = &world->camera();
 #endif
     if (!sim) {
-      auto replay = std::make_unique<hal::PcdReplayCamera>(opt.camera_replay, clock);
+      const fsw_app::EstimatorTaskConfig defaults;
+      auto replay = std::make_unique<replay_camera::PcdReplayCamera>(
+          opt.camera_replay, clock, true,
+          static_cast<std::uint64_t>(defaults.max_width) * defaults.max_height);
       if (!replay->load(&error)) {
         std::fprintf(stderr, "fsw_app: %s\n", error.c_str());
         return 2;
+      }
+      // The files that would not read are named; the others play.
+      if (!error.empty()) {
+        std::fprintf(stderr, "fsw_app: --camera-replay: %zu frames; skipped:\n%s",
+                     replay->frame_count(), error.c_str());
       }
       owned_camera = std::move(replay);
       camera = owned_camera.get();
@@ -338,7 +383,10 @@ int main(int argc, char** argv) {
   hub.subscribe(fsw_app::channel::kEstimatorHealth, &health_box);
   hub.subscribe(fsw_app::channel::kApproachStatus, &approach_box);
   fsw_app::Publisher<hrp::perch_command_t> command_pub(hub, fsw_app::channel::kPerchCommand);
+  // Every subscription is made by now: the channel list is fixed.
+  fsw_app::InputHealthReporter input_health(hub, fsw_app::task_names(opt.tasks));
 
+  g_tasks_running = 1;
   hub.start();
   if (estimator_task) estimator_task->start();
   if (arm_task) arm_task->start();
@@ -361,9 +409,17 @@ int main(int argc, char** argv) {
   std::size_t next_fault = 0;
 #endif
   bool realtime_reported = false;
-  while (!g_stop && !done) {
+  double last_input_health = 0.0;
+  bool stopping = false;
+  double stop_s = 0.0;
+  fsw_app::StopReport summary_stop;
+  while (!done) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     const double t = seconds();
+    if (t - last_input_health >= 1.0) {
+      last_input_health = t;
+      input_health.publish(clock.now_us());
+    }
     if (arm_task && !realtime_reported && cfg.arm_rt_priority > 0 &&
         arm_task->cycle_stats().cycles > 0) {
       realtime_reported = true;
@@ -383,10 +439,36 @@ int main(int argc, char** argv) {
     }
     const bool have_arm = arm_box.read(&arm) != 0;
     approach_box.read(&approach);
-    if (opt.perch && !commanded && have_arm && arm.state == hrp::arm_state_t::STOWED) {
+    if (g_stop && !stopping) {
+      // Only a perch has something to stop safely; any other run ends here.
+      if (!opt.perch || !commanded) break;
+      stopping = true;
+      stop_s = t;
       hrp::perch_command_t c{};
       c.utime = clock.now_us();
-      c.sequence = 1;
+      c.sequence = kStopSequence;
+      c.command = hrp::perch_command_t::ABORT;
+      command_pub.publish(c);
+      std::fprintf(stderr,
+                   "%sfsw_app: %s at %.1f s (arm %s): ABORT sent, waiting for the arm to come to "
+                   "rest; a second signal ends the program at once\n",
+                   tty ? "\n" : "", fsw_app::signal_name(g_stop), t,
+                   have_arm ? state_name(arm.state) : "-");
+    }
+    if (stopping) {
+      const bool acknowledged = arm.last_command_sequence == kStopSequence;
+      if ((acknowledged && arm_at_rest(arm.state)) || t - stop_s > kSafeStopLimit_s) {
+        summary_stop.stopped = true;
+        summary_stop.signal = g_stop;
+        summary_stop.at_rest = acknowledged && arm_at_rest(arm.state);
+        summary_stop.after_s = t - stop_s;
+        done = true;
+      }
+    }
+    if (opt.perch && !commanded && !stopping && have_arm && arm.state == hrp::arm_state_t::STOWED) {
+      hrp::perch_command_t c{};
+      c.utime = clock.now_us();
+      c.sequence = kPerchSequence;
       c.command = hrp::perch_command_t::PERCH;
       command_pub.publish(c);
       commanded = true;
@@ -417,7 +499,7 @@ int main(int argc, char** argv) {
       }
     }
 #endif
-    if (opt.perch && commanded) {
+    if (opt.perch && commanded && !stopping) {
       if (arm.state == hrp::arm_state_t::PERCHED && perched_s == 0.0) perched_s = t;
       if (perched_s > 0.0 && t - perched_s > 1.0) {
         perched = true;
@@ -471,8 +553,10 @@ int main(int argc, char** argv) {
     estimator_task->stop();
     estimator_task->publish_health();
   }
+  input_health.publish(clock.now_us());
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   hub.stop();
+  summary.inputs = input_health.refresh(clock.now_us());
 
   health_box.read(&summary.health);
   arm_box.read(&summary.arm);
@@ -483,20 +567,37 @@ int main(int argc, char** argv) {
   }
 #endif
   if (player) summary.replay = player->counts();
+  summary.stop = summary_stop;
+  if (g_stop && !summary_stop.stopped) {
+    summary.stop.stopped = true;  // a run without a perch to stop safely
+    summary.stop.signal = g_stop;
+    summary.stop.at_rest = true;
+  }
   summary.perched = perched;
   summary.time_to_perch_s = perched ? perched_s - perch_cmd_s : -1.0;
   summary.success = perched && summary.grasp_error_m >= 0.0 && summary.grasp_error_m <= 0.01;
-  summary.log_messages = log.events;
+  const bool log_complete = log.close();
+  summary.log_messages = log.events();
+  summary.log_depth_frames = log.depth_frames();
+  summary.log_lost = log.lost();
+  summary.log_failure = log.failure();
+  if (frame_publisher)
+    summary.frames_published = static_cast<std::int64_t>(frame_publisher->published());
   int rc = 0;
   if (opt.perch) {
     fsw_app::print_perch_summary(opt, summary, stdout);
-    rc = summary.success ? 0 : 1;
+    rc = summary.stop.stopped ? 128 + summary.stop.signal : (summary.success ? 0 : 1);
   } else if (player) {
     fsw_app::print_replay_summary(opt, summary, stdout);
   }
   if (!opt.summary_json.empty() && !fsw_app::write_summary_json(opt, summary, opt.summary_json)) {
     std::fprintf(stderr, "fsw_app: %s: cannot write the summary\n", opt.summary_json.c_str());
     return 1;
+  }
+  if (!log_complete) {
+    std::fprintf(stderr, "fsw_app: LCM log %s: %s; %lld messages not recorded\n", opt.log.c_str(),
+                 summary.log_failure.c_str(), static_cast<long long>(summary.log_lost));
+    return fsw_app::kExitLogIncomplete;
   }
   return rc;
 }

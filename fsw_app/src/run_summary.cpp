@@ -1,6 +1,19 @@
 #include "run_summary.hpp"
 
+#include <signal.h>
+
 namespace fsw_app {
+
+const char* signal_name(int sig) {
+  switch (sig) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    default:
+      return "a signal";
+  }
+}
 
 namespace {
 
@@ -24,10 +37,44 @@ void print_frames(const RunSummary& s, std::FILE* out) {
   }
 }
 
+// One line for the checked inputs; a line per channel that refused any.
+void print_inputs(const RunSummary& s, std::FILE* out) {
+  const hrp::input_health_t& in = s.inputs;
+  long long accepted = 0, rejected = 0;
+  for (int k = 0; k < in.num_channels; ++k) {
+    accepted += in.accepted[k];
+    rejected += in.undecodable[k] + in.trailing_bytes[k] + in.not_finite[k] + in.out_of_range[k] +
+                in.stale[k];
+  }
+  std::fprintf(out, "  inputs              %lld messages accepted, %lld rejected on %d channels\n",
+               accepted, rejected, in.num_channels);
+  for (int k = 0; k < in.num_channels; ++k) {
+    const long long counts[] = {in.undecodable[k], in.trailing_bytes[k], in.not_finite[k],
+                                in.out_of_range[k], in.stale[k]};
+    const char* names[] = {"UNDECODABLE", "TRAILING_BYTES", "NOT_FINITE", "OUT_OF_RANGE", "STALE"};
+    long long any = 0;
+    for (long long c : counts) any += c;
+    if (any == 0) continue;
+    std::fprintf(out, "    %-17s %lld rejected:", in.channel[k].c_str(), any);
+    for (int r = 0; r < 5; ++r) {
+      if (counts[r]) std::fprintf(out, " %s %lld", names[r], counts[r]);
+    }
+    std::fprintf(out, "\n");
+  }
+}
+
 void print_log(const Options& opt, const RunSummary& s, std::FILE* out) {
-  if (!opt.log.empty()) {
-    std::fprintf(out, "  LCM log             %s (%lld messages)\n", opt.log.c_str(),
-                 static_cast<long long>(s.log_messages));
+  if (opt.log.empty()) return;
+  std::fprintf(out, "  LCM log             %s (%lld messages", opt.log.c_str(),
+               static_cast<long long>(s.log_messages));
+  if (s.frames_published >= 0) {
+    std::fprintf(out, "; %lld of %lld depth frames", static_cast<long long>(s.log_depth_frames),
+                 static_cast<long long>(s.frames_published));
+  }
+  std::fprintf(out, ")\n");
+  if (!s.log_failure.empty()) {
+    std::fprintf(out, "  LCM log FAILED      %s; %lld messages not recorded\n",
+                 s.log_failure.c_str(), static_cast<long long>(s.log_lost));
   }
 }
 
@@ -36,8 +83,14 @@ void print_log(const Options& opt, const RunSummary& s, std::FILE* out) {
 void print_perch_summary(const Options& opt, const RunSummary& s, std::FILE* out) {
   const bool fault = s.arm.state == hrp::arm_state_t::FAULT;
   std::fprintf(out, "summary\n");
-  std::fprintf(out, "  result              %s\n",
-               s.perched ? "PERCHED" : (fault ? "FAULT" : "TIMEOUT"));
+  std::fprintf(
+      out, "  result              %s\n",
+      s.stop.stopped ? "STOPPED" : (s.perched ? "PERCHED" : (fault ? "FAULT" : "TIMEOUT")));
+  if (s.stop.stopped) {
+    std::fprintf(out, "  stopped by          %s; %s after %.1f s\n", signal_name(s.stop.signal),
+                 s.stop.at_rest ? "the arm came to rest" : "the arm did NOT come to rest",
+                 s.stop.after_s);
+  }
   std::fprintf(out, "  arm state           %s%s%s\n", s.arm.state_name.c_str(),
                s.arm.fault_text.empty() ? "" : ": ", s.arm.fault_text.c_str());
   if (s.perched) std::fprintf(out, "  time to perch       %.1f s after PERCH\n", s.time_to_perch_s);
@@ -64,6 +117,7 @@ void print_perch_summary(const Options& opt, const RunSummary& s, std::FILE* out
   }
   if (s.gripper_retries)
     std::fprintf(out, "  gripper board       %u retries\n", *s.gripper_retries);
+  print_inputs(s, out);
   print_log(opt, s, out);
 }
 
@@ -86,8 +140,30 @@ void print_replay_summary(const Options& opt, const RunSummary& s, std::FILE* ou
     }
   }
   print_frames(s, out);
+  print_inputs(s, out);
   print_log(opt, s, out);
 }
+
+namespace {
+
+// "inputs": {"CHANNEL": {"accepted": n, "rejected": {"REASON": n, ...}}, ...}
+void write_inputs_json(const hrp::input_health_t& in, std::FILE* f) {
+  std::fprintf(f, "\"inputs\": {");
+  for (int k = 0; k < in.num_channels; ++k) {
+    std::fprintf(f,
+                 "%s\"%s\": {\"accepted\": %lld, \"rejected\": {\"UNDECODABLE\": %lld, "
+                 "\"TRAILING_BYTES\": %lld, \"NOT_FINITE\": %lld, \"OUT_OF_RANGE\": %lld, "
+                 "\"STALE\": %lld}}",
+                 k ? ", " : "", in.channel[k].c_str(), static_cast<long long>(in.accepted[k]),
+                 static_cast<long long>(in.undecodable[k]),
+                 static_cast<long long>(in.trailing_bytes[k]),
+                 static_cast<long long>(in.not_finite[k]),
+                 static_cast<long long>(in.out_of_range[k]), static_cast<long long>(in.stale[k]));
+  }
+  std::fprintf(f, "}");
+}
+
+}  // namespace
 
 bool write_summary_json(const Options& opt, const RunSummary& s, const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "w");
@@ -103,7 +179,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       "\"deadline_misses\": %lld, \"processing_median_us\": %d, \"arm_cycles\": %lld, "
       "\"arm_overruns\": %lld, \"arm_longest_gap_ms\": %.1f, \"arm_realtime\": \"%s\", "
       "\"camera_longest_gap_ms\": %.1f, \"estimator_longest_latency_ms\": %.1f, "
-      "\"replayed_frames\": %lld, \"replayed_bad_frames\": %lld, \"replay_damaged\": %lld}\n",
+      "\"replayed_frames\": %lld, \"replayed_bad_frames\": %lld, \"replay_damaged\": %lld, ",
       static_cast<unsigned long long>(opt.seed), opt.scenario.c_str(),
       task_names(opt.tasks).c_str(), s.perched ? "true" : "false", s.success ? "true" : "false",
       s.arm.state_name.c_str(), s.arm.fault_name.c_str(), s.arm.fault_text.c_str(),
@@ -116,6 +192,16 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       s.estimator_longest_latency_ms, s.replay ? static_cast<long long>(s.replay->frames) : -1LL,
       s.replay ? static_cast<long long>(s.replay->bad_frames) : -1LL,
       s.replay ? static_cast<long long>(s.replay->damaged) : -1LL);
+  std::fprintf(f,
+               "\"log_messages\": %lld, \"log_depth_frames\": %lld, \"frames_published\": %lld, "
+               "\"log_failure\": \"%s\", \"log_lost\": %lld, \"stopped\": %s, \"stop_signal\": %d, "
+               "\"stopped_at_rest\": %s, ",
+               static_cast<long long>(s.log_messages), static_cast<long long>(s.log_depth_frames),
+               static_cast<long long>(s.frames_published), s.log_failure.c_str(),
+               static_cast<long long>(s.log_lost), s.stop.stopped ? "true" : "false", s.stop.signal,
+               s.stop.at_rest ? "true" : "false");
+  write_inputs_json(s.inputs, f);
+  std::fprintf(f, "}\n");
   return std::fclose(f) == 0;
 }
 

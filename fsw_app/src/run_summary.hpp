@@ -1,6 +1,6 @@
 #pragma once
 // What fsw_app reports at the end of a run: on the terminal, and as one JSON
-// object (--summary-json) for tools/perch-runs and the tests. Figures of a
+// object (--summary-json) for the perch-runs script and the tests. Figures of a
 // task that ran in another process are left out of the text and are -1 in
 // the JSON.
 #include <cstdint>
@@ -14,8 +14,25 @@
 #include "fsw_app/periodic_thread.hpp"
 #include "hrp/arm_state_t.hpp"
 #include "hrp/estimator_health_t.hpp"
+#include "hrp/input_health_t.hpp"
 
 namespace fsw_app {
+
+// Exit statuses besides 0 (perched, or a run that ended as asked), 1 (no
+// perch, or a device that would not start) and 2 (bad options, files or
+// configuration).
+constexpr int kExitLogIncomplete = 3;  // the LCM log could not be written whole
+// A perch stopped by a signal exits with 128 + the signal's number (130 for
+// SIGINT, 143 for SIGTERM) after its safe stop; a run without --perch ends
+// on a signal with 0, as it was asked to.
+
+// A run ended by SIGINT or SIGTERM.
+struct StopReport {
+  bool stopped = false;
+  int signal = 0;
+  bool at_rest = false;  // the arm acknowledged the ABORT and came to rest
+  double after_s = 0.0;  // from the signal to the end
+};
 
 struct RunSummary {
   bool perched = false;
@@ -32,7 +49,16 @@ struct RunSummary {
   double estimator_longest_latency_ms = -1.0;
   std::optional<LogPlayerCounts> replay;
   std::int64_t log_messages = -1;
+  std::int64_t log_depth_frames = -1;  // DEPTH_FRAME messages in the log
+  std::int64_t log_lost = 0;           // heard after a failed write, not recorded
+  std::string log_failure;             // empty: every write succeeded
+  std::int64_t frames_published = -1;  // DEPTH_FRAME messages this process sent
+  hrp::input_health_t inputs{};        // this process's checked channels
+  StopReport stop;
 };
+
+// "SIGINT", "SIGTERM".
+const char* signal_name(int sig);
 
 // The perch run's summary (result, times, frames, loops, links).
 void print_perch_summary(const Options& opt, const RunSummary& s, std::FILE* out);

@@ -1,17 +1,17 @@
 #include "sim_hal/scenario.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <sstream>
 
-#include "hal/json.hpp"
+#include "formats/json.hpp"
+#include "formats/text_file.hpp"
 
 namespace sim_hal {
 namespace {
 
-using hal::JsonValue;
+using formats::JsonValue;
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 constexpr std::size_t kMaxFrames = 100000;
@@ -37,8 +37,8 @@ class Reader {
       return nullptr;
     }
     if (v->type != type) {
-      fail(*v, std::string("\"") + key + "\" must be a " + hal::to_string(type) + ", not a " +
-                   hal::to_string(v->type));
+      fail(*v, std::string("\"") + key + "\" must be a " + formats::to_string(type) + ", not a " +
+                   formats::to_string(v->type));
       return nullptr;
     }
     return v;
@@ -364,7 +364,7 @@ bool parse_scenario(const std::string& text, const std::string& path, Scenario* 
   *out = Scenario{};
   JsonValue root;
   std::string json_error;
-  if (!hal::parse_json(text, &root, &json_error)) {
+  if (!formats::parse_json(text, &root, &json_error)) {
     *error = path + ":" + json_error.substr(5);  // "line N: ..." -> "N: ..."
     return false;
   }
@@ -401,14 +401,12 @@ bool parse_scenario(const std::string& text, const std::string& path, Scenario* 
 }
 
 bool load_scenario(const std::string& path, Scenario* out, std::string* error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    *error = path + ": cannot open the scenario file";
+  std::string text;
+  if (formats::read_file_bounded(path, formats::kMaxTextFileBytes, &text, error) !=
+      formats::FileStatus::kOk) {
     return false;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scenario(text.str(), path, out, error);
+  return parse_scenario(text, path, out, error);
 }
 
 }  // namespace sim_hal

@@ -7,7 +7,7 @@
 
 #include "cmocka_cpp.hpp"
 #include "estimator/handrail_detector.hpp"
-#include "hal/json.hpp"
+#include "formats/json.hpp"
 #include "recorded_frames.hpp"
 #include "synthetic_cloud.hpp"
 #include "test_data.hpp"
@@ -169,11 +169,11 @@ struct Truth {
 };
 
 Truth read_truth(const std::string& name) {
-  hal::JsonValue root;
+  formats::JsonValue root;
   std::string error;
-  assert_true(
-      hal::parse_json(testing_support::read_text(testing_support::data_path(name)), &root, &error));
-  const hal::JsonValue& h = root.find("handrails")->items[0];
+  assert_true(formats::parse_json(testing_support::read_text(testing_support::data_path(name)),
+                                  &root, &error));
+  const formats::JsonValue& h = root.find("handrails")->items[0];
   Truth t;
   for (int e = 0; e < 2; ++e)
     for (int k = 0; k < 3; ++k)

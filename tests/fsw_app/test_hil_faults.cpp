@@ -7,11 +7,20 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
+
+#include "hrp/body_velocity_command_t.hpp"
+#include "hrp/perch_command_t.hpp"
+#include "hrp/robot_pose_t.hpp"
 
 #include "child_process.hpp"
 #include "cmocka_cpp.hpp"
@@ -209,6 +218,175 @@ void test_tasks_split_across_two_processes_perch(void**) {
   assert_true(o.flag("success"));
 }
 
+// What testing from outside found (an LCM injector during a perch): a
+// truncated ROBOT_POSE was kept half-decoded (approach error 1730 m,
+// HANDRAIL_LOST), a NaN ROBOT_POSE was taken (NaN velocity commands), a
+// PERCH_COMMAND ABORT with junk after it was carried out, and undecodable
+// messages were counted nowhere. Now, with all of them arriving all
+// through the run, the robot perches, no velocity command carries a NaN,
+// and the summary counts each by channel and reason.
+double input_rejections(const Outcome& o, const char* channel, const char* reason) {
+  const formats::JsonValue* inputs = o.json.find("inputs");
+  const formats::JsonValue* c = inputs ? inputs->find(channel) : nullptr;
+  const formats::JsonValue* r = c ? c->find("rejected") : nullptr;
+  const formats::JsonValue* n = r ? r->find(reason) : nullptr;
+  return n && n->is_number() ? n->number : -1.0;
+}
+
+template <typename Msg>
+std::vector<std::uint8_t> encoded(const Msg& m) {
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+void test_hostile_messages_during_a_perch_change_nothing(void**) {
+  if (!g_udpm) {
+    std::printf("  NOTE: needs udpm between processes; not run here\n");
+    return;
+  }
+  Outcome o;
+  int non_finite_commands = 0, velocity_commands = 0;
+  for (int attempt = 0; attempt <= kStallRepeats; ++attempt) {
+    const std::string url = "udpm://239.255.76.67:" + std::to_string(g_port) + "?ttl=0";
+    std::atomic<bool> stop{false};
+    non_finite_commands = velocity_commands = 0;
+    std::thread injector([&] {
+      lcm::LCM lcm(url);
+      struct Watch {
+        int* non_finite;
+        int* seen;
+        void on(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+          hrp::body_velocity_command_t c;
+          if (c.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) return;
+          ++*seen;
+          for (int k = 0; k < 3; ++k) {
+            if (!std::isfinite(c.velocity_mps[k]) || !std::isfinite(c.angular_velocity_rps[k])) {
+              ++*non_finite;
+            }
+          }
+        }
+      } watch{&non_finite_commands, &velocity_commands};
+      lcm.subscribe("BODY_VELOCITY_COMMAND", &Watch::on, &watch);
+      hrp::robot_pose_t far{};
+      far.T_world_body.position_m[0] = 1730.0;
+      far.T_world_body.quat_wxyz[0] = 1.0;
+      std::vector<std::uint8_t> truncated = encoded(far);
+      truncated.resize(truncated.size() - 8);
+      hrp::robot_pose_t nan_pose = far;
+      nan_pose.T_world_body.position_m[0] = std::numeric_limits<double>::quiet_NaN();
+      hrp::perch_command_t abort{};
+      abort.sequence = 99;
+      abort.command = hrp::perch_command_t::ABORT;
+      std::vector<std::uint8_t> abort_junk = encoded(abort);
+      abort_junk.resize(abort_junk.size() + 64, 0x5A);
+      const std::uint8_t junk[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
+      while (!stop.load()) {
+        lcm.publish("ROBOT_POSE", truncated.data(), static_cast<unsigned>(truncated.size()));
+        const std::vector<std::uint8_t> nan_bytes = encoded(nan_pose);
+        lcm.publish("ROBOT_POSE", nan_bytes.data(), static_cast<unsigned>(nan_bytes.size()));
+        lcm.publish("PERCH_COMMAND", abort_junk.data(), static_cast<unsigned>(abort_junk.size()));
+        lcm.publish("PERCH_COMMAND", junk, sizeof junk);
+        lcm.handleTimeout(20);
+      }
+    });
+    o = run("approach-iss", {"--seed", "9"});  // on the injector's port
+    stop = true;
+    injector.join();
+    std::printf(
+        "  ROBOT_POSE rejected: %.0f undecodable, %.0f not finite; PERCH_COMMAND: %.0f "
+        "trailing bytes, %.0f undecodable; %d velocity commands, %d non-finite\n",
+        input_rejections(o, "ROBOT_POSE", "UNDECODABLE"),
+        input_rejections(o, "ROBOT_POSE", "NOT_FINITE"),
+        input_rejections(o, "PERCH_COMMAND", "TRAILING_BYTES"),
+        input_rejections(o, "PERCH_COMMAND", "UNDECODABLE"), velocity_commands,
+        non_finite_commands);
+    if (perched_within_1cm(o)) break;
+    const std::string stall = host_stall(o);
+    if (stall.empty()) break;
+    std::printf("  NOTE: %s (host); running this case again\n", stall.c_str());
+  }
+  assert_true(o.flag("perched"));
+  assert_true(o.flag("success"));
+  assert_int_equal(non_finite_commands, 0);
+  assert_true(velocity_commands > 10);
+  assert_true(input_rejections(o, "ROBOT_POSE", "UNDECODABLE") > 10);
+  assert_true(input_rejections(o, "ROBOT_POSE", "NOT_FINITE") > 10);
+  assert_true(input_rejections(o, "PERCH_COMMAND", "TRAILING_BYTES") > 10);
+  assert_true(input_rejections(o, "PERCH_COMMAND", "UNDECODABLE") > 10);
+}
+
+// Spawns a perch with the given extra arguments, its summary to `summary`.
+pid_t start_perch(const std::string& summary, const std::vector<std::string>& extra) {
+  std::vector<std::string> args = {"--config",       source("fsw_app/config/fsw_app.json"),
+                                   "--hal",          "sim",
+                                   "--scenario",     source("sim_hal/scenarios/approach-iss.json"),
+                                   "--perch",        "--quiet",
+                                   "--lcm-url",      "memq://",
+                                   "--summary-json", summary};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return testing_support::spawn_program(g_program, args, summary + ".out");
+}
+
+double seconds_since(const std::chrono::steady_clock::time_point& t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// SIGTERM during the approach (gripper open, the robot flying in) is a
+// safe stop: the perch sequence's own ABORT (open, back off, stow), the
+// summary says STOPPED with the state reached, exit status 128 + 15. It
+// was: exit 1 in 0.35 s, summary TIMEOUT, the arm left open and torqued.
+void test_signal_during_a_perch_is_a_safe_stop(void**) {
+  const std::string summary = "/tmp/hrp_hil_stop_" + std::to_string(getpid()) + ".json";
+  const pid_t pid = start_perch(summary, {"--seed", "10"});
+  std::this_thread::sleep_for(std::chrono::seconds(7));  // deployed, opening or open
+  kill(pid, SIGTERM);
+  const auto t0 = std::chrono::steady_clock::now();
+  assert_int_equal(testing_support::wait_for_exit(pid), 128 + SIGTERM);
+  const double stop_s = seconds_since(t0);
+  testing_support::Summary s;
+  std::string error;
+  assert_true(testing_support::read_summary(summary, &s, &error));
+  std::printf("  stopped in %.1f s at %s (at rest: %s)\n", stop_s, s.text("arm_state").c_str(),
+              s.flag("stopped_at_rest") ? "yes" : "no");
+  assert_true(s.flag("stopped"));
+  assert_int_equal(static_cast<int>(s.number("stop_signal")), SIGTERM);
+  assert_true(s.flag("stopped_at_rest"));
+  // The ABORT's rule: open, back off and stow; or hold if already perched.
+  assert_true(s.text("arm_state") == "STOWED" || s.text("arm_state") == "PERCHED");
+  assert_false(s.flag("success"));
+  std::remove(summary.c_str());
+  std::remove((summary + ".out").c_str());
+}
+
+// A second signal while the safe stop is under way ends the program at
+// once; a signal before the tasks start (configuration, scenario, devices)
+// ends it at once too.
+void test_second_signal_and_early_signal_end_at_once(void**) {
+  const std::string summary = "/tmp/hrp_hil_stop2_" + std::to_string(getpid()) + ".json";
+  pid_t pid = start_perch(summary, {"--seed", "11"});
+  std::this_thread::sleep_for(std::chrono::seconds(7));
+  kill(pid, SIGTERM);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto t0 = std::chrono::steady_clock::now();
+  kill(pid, SIGINT);
+  assert_int_equal(testing_support::wait_for_exit(pid), 128 + SIGINT);
+  const double second_s = seconds_since(t0);
+  std::printf("  second signal: ended in %.2f s\n", second_s);
+  assert_true(second_s < 1.0);
+
+  pid = start_perch(summary, {"--seed", "12"});
+  std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const auto t1 = std::chrono::steady_clock::now();
+  kill(pid, SIGTERM);
+  assert_int_equal(testing_support::wait_for_exit(pid), 128 + SIGTERM);
+  const double early_s = seconds_since(t1);
+  std::printf("  signal at start-up: ended in %.2f s\n", early_s);
+  assert_true(early_s < 2.0);
+  std::remove(summary.c_str());
+  std::remove((summary + ".out").c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -235,6 +413,9 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_burst_of_corrupt_frames_is_dropped_and_counted),
       cmocka_unit_test(test_estimator_over_budget),
       cmocka_unit_test(test_tasks_split_across_two_processes_perch),
+      cmocka_unit_test(test_hostile_messages_during_a_perch_change_nothing),
+      cmocka_unit_test(test_signal_during_a_perch_is_a_safe_stop),
+      cmocka_unit_test(test_second_signal_and_early_signal_end_at_once),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

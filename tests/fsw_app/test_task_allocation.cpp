@@ -15,11 +15,11 @@
 #include "../arm/fake_arm_devices.hpp"
 #include "allocation_counter.hpp"
 #include "cmocka_cpp.hpp"
+#include "formats/pcd_io.hpp"
 #include "fsw_app/arm_task.hpp"
 #include "fsw_app/estimator_task.hpp"
 #include "fsw_app/frame_publisher.hpp"
 #include "fsw_app/lcm_depth_camera.hpp"
-#include "hal/pcd_io.hpp"
 #include "test_data.hpp"
 
 namespace {
@@ -54,11 +54,11 @@ void test_estimator_task_processes_frames_without_allocating(void**) {
   fsw_app::EstimatorTaskConfig cfg;
   cfg.detector.budget_us = 1000000;
   fsw_app::EstimatorTask task(hub, camera, ring, cfg, clock);
-  std::vector<hal::PcdFrame> frames(3);
+  std::vector<formats::PcdFrame> frames(3);
   const char* names[] = {"table2-iss-1.pcd", "table2-round-2.pcd", "clutter-only-0.pcd"};
   for (int k = 0; k < 3; ++k) {
     std::string error;
-    assert_true(hal::read_pcd(testing_support::data_path(names[k]), &frames[k], &error));
+    assert_true(formats::read_pcd(testing_support::data_path(names[k]), &frames[k], &error));
   }
   // Warm up: the first frame through every path.
   camera.on_new_data(frames[0].view(0, clock.now_us()));
@@ -123,12 +123,12 @@ void test_frames_cross_lcm_without_allocating(void**) {
   assert_int_equal(source.initialize(), hal::CameraStatus::kSuccess);
   assert_int_equal(source.register_data_listener(&far_task), hal::CameraStatus::kSuccess);
   assert_int_equal(source.start_capture(), hal::CameraStatus::kSuccess);
-  std::vector<hal::PcdFrame> frames(2);
+  std::vector<formats::PcdFrame> frames(2);
   std::vector<std::vector<std::uint8_t>> encoded(2);
   const char* names[] = {"table2-iss-1.pcd", "clutter-only-0.pcd"};
   for (int k = 0; k < 2; ++k) {
     std::string error;
-    assert_true(hal::read_pcd(testing_support::data_path(names[k]), &frames[k], &error));
+    assert_true(formats::read_pcd(testing_support::data_path(names[k]), &frames[k], &error));
     hrp::depth_frame_t msg;
     fsw_app::to_msg(frames[k].view(static_cast<std::uint64_t>(k)), &msg);
     encoded[k].resize(static_cast<std::size_t>(msg.getEncodedSize()));

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "estimator/organized_cloud.hpp"
+#include "formats/pcd_io.hpp"
 #include "frame_convert.hpp"
-#include "hal/pcd_io.hpp"
 #include "test_data.hpp"
 
 namespace testing_support {
@@ -18,8 +18,8 @@ struct RecordedCloud {
 
 // False (with *error set) when the file cannot be read.
 inline bool load_recorded_cloud(const std::string& name, RecordedCloud* out, std::string* error) {
-  hal::PcdFrame pcd;
-  if (!hal::read_pcd(data_path(name), &pcd, error)) return false;
+  formats::PcdFrame pcd;
+  if (!formats::read_pcd(data_path(name), &pcd, error)) return false;
   out->cloud = tools::to_estimator_cloud(pcd.view(), &out->points);
   return true;
 }

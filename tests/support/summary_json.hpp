@@ -4,30 +4,30 @@
 // -1 or false, so a check against it fails rather than crashes.
 #include <string>
 
-#include "hal/json.hpp"
+#include "formats/json.hpp"
 #include "test_data.hpp"
 
 namespace testing_support {
 
 struct Summary {
-  hal::JsonValue json;
+  formats::JsonValue json;
   std::string text(const char* key) const {
-    const hal::JsonValue* v = json.find(key);
+    const formats::JsonValue* v = json.find(key);
     return v && v->is_string() ? v->text : "";
   }
   double number(const char* key) const {
-    const hal::JsonValue* v = json.find(key);
+    const formats::JsonValue* v = json.find(key);
     return v && v->is_number() ? v->number : -1.0;
   }
   bool flag(const char* key) const {
-    const hal::JsonValue* v = json.find(key);
+    const formats::JsonValue* v = json.find(key);
     return v && v->is_bool() && v->boolean;
   }
 };
 
 // Reads and parses `path`; false with the parser's message in `error`.
 inline bool read_summary(const std::string& path, Summary* out, std::string* error) {
-  return hal::parse_json(read_text(path), &out->json, error);
+  return formats::parse_json(read_text(path), &out->json, error);
 }
 
 }  // namespace testing_support

@@ -16,8 +16,8 @@
 #include "estimator/handrail_filters.hpp"
 #include "estimator/line_estimation.hpp"
 #include "estimator/plane_estimation.hpp"
+#include "formats/pcd_io.hpp"
 #include "frame_convert.hpp"
-#include "hal/pcd_io.hpp"
 #include "sim_hal/camera_model.hpp"
 #include "sim_hal/scenario.hpp"
 #include "sim_hal/tof_sensor.hpp"
@@ -39,9 +39,9 @@ const Frame& frame(const char* name, bool round) {
   static std::vector<std::string> names;
   for (std::size_t k = 0; k < names.size(); ++k)
     if (names[k] == name) return *cache[k];
-  hal::PcdFrame pcd;
+  formats::PcdFrame pcd;
   std::string error;
-  if (!hal::read_pcd(std::string(HRP_SOURCE_DIR) + "/tests/data/" + name, &pcd, &error)) {
+  if (!formats::read_pcd(std::string(HRP_SOURCE_DIR) + "/tests/data/" + name, &pcd, &error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     std::exit(1);
   }

@@ -12,12 +12,12 @@
 
 #include "common/depth_picture.hpp"
 #include "common/detection_json.hpp"
-#include "common/detector_config_io.hpp"
 #include "common/frame_convert.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "estimator/handrail_tracker.hpp"
 #include "estimator/pixel_scale.hpp"
-#include "hal/pcd_io.hpp"
+#include "formats/detector_config_io.hpp"
+#include "formats/pcd_io.hpp"
 
 namespace {
 
@@ -25,7 +25,8 @@ void usage(FILE* out) {
   std::fprintf(out,
                "usage: hrdetect [options] PATH...\n"
                "Detects the handrail in organized PCD files (or folders of them, taken in\n"
-               "name order) and prints one JSON object per frame on stdout.\n\n"
+               "name order) and prints one JSON object per frame on stdout. PCD data may be\n"
+               "ascii, binary or binary_compressed (PCL's LZF form).\n\n"
                "options:\n"
                "  --method proposed|basic  the paper's detector (default) or its basic baseline\n"
                "  --gripper-angle DEG      angle of handrails the gripper takes; 0 (default) =\n"
@@ -74,8 +75,10 @@ bool collect_inputs(const std::vector<std::string>& args, std::vector<std::strin
     }
     closedir(d);
     std::sort(found.begin(), found.end());
-    if (found.empty())
+    if (found.empty()) {
       std::fprintf(stderr, "hrdetect: %s: no .pcd files in this folder\n", a.c_str());
+      ok = false;
+    }
     files->insert(files->end(), found.begin(), found.end());
   }
   return ok;
@@ -88,12 +91,14 @@ std::string stem(const std::string& path) {
 }
 
 // One picture per stage: the pixels a stage kept in colour over the depth
-// image in grey, like the paper's Figure 5 (a) to (f).
-void write_debug_pictures(const std::string& dir, const std::string& name,
+// image in grey, like the paper's Figure 5 (a) to (f). False, with *error,
+// when a picture could not be written.
+bool write_debug_pictures(const std::string& dir, const std::string& name,
                           const hal::DepthFrame& frame, const estimator::OrganizedCloud& cloud,
                           const estimator::HandrailDetector& det,
-                          const estimator::HandrailDetection& d) {
+                          const estimator::HandrailDetection& d, std::string* error) {
   const estimator::Workspace& ws = det.workspace();
+  bool written = true;
   const int w = static_cast<int>(frame.width), h = static_cast<int>(frame.height);
   struct Stage {
     const char* suffix;
@@ -109,7 +114,6 @@ void write_debug_pictures(const std::string& dir, const std::string& name,
       {"e_side", "E SIDE WIDTH", estimator::kFlagSide, {230, 120, 30}},
       {"f_line", "F LINE AND ENDS", estimator::kFlagLine, {220, 40, 40}},
   };
-  std::string error;
   const estimator::PixelScale scale = estimator::estimate_pixel_scale(cloud, ws.sample);
   auto project = [&](const Eigen::Vector3d& p, Eigen::Vector2d* px) {
     if (!scale.ok || p.z() <= 1e-6) return false;
@@ -142,7 +146,7 @@ void write_debug_pictures(const std::string& dir, const std::string& name,
       }
     }
     big.text(4, 4, s.title, {255, 255, 255}, 2);
-    big.write_png(dir + "/" + name + "_" + s.suffix + ".png", &error);
+    written = big.write_png(dir + "/" + name + "_" + s.suffix + ".png", error) && written;
   }
   // The final pose over the depth image: centre line, centre, target offset.
   tools::Image pose = tools::depth_picture(frame);
@@ -158,7 +162,7 @@ void write_debug_pictures(const std::string& dir, const std::string& name,
   } else {
     pose.text(4, 4, std::string("NH ") + to_string(d.status), {255, 255, 255}, 2);
   }
-  pose.write_png(dir + "/" + name + "_g_pose.png", &error);
+  return pose.write_png(dir + "/" + name + "_g_pose.png", error) && written;
 }
 
 }  // namespace
@@ -229,7 +233,7 @@ int main(int argc, char** argv) {
   if (handrail == "round")
     cfg.handrail = estimator::paper_round_handrail(cfg.handrail.bar_length_m);
   std::string error;
-  if (!config_path.empty() && !tools::load_detector_config(config_path, &cfg, &error)) {
+  if (!config_path.empty() && !formats::load_detector_config(config_path, &cfg, &error)) {
     std::fprintf(stderr, "hrdetect: %s\n", error.c_str());
     return 2;
   }
@@ -248,10 +252,12 @@ int main(int argc, char** argv) {
   estimator::HandrailTracker tracker(track_cfg);
   const Eigen::Isometry3f still = Eigen::Isometry3f::Identity();
   std::vector<estimator::CloudPoint> buffer;
-  hal::PcdFrame pcd;
+  formats::PcdFrame pcd;
   std::uint64_t frame_id = 0;
   for (const std::string& file : files) {
-    if (!hal::read_pcd(file, &pcd, &error)) {
+    // Limited to the detector's largest frame before anything is allocated.
+    if (!formats::read_pcd(file, &pcd, &error,
+                           static_cast<std::uint64_t>(cfg.max_width) * cfg.max_height)) {
       std::fprintf(stderr, "hrdetect: %s\n", error.c_str());
       all_read = false;
       continue;
@@ -272,9 +278,18 @@ int main(int argc, char** argv) {
       line.pop_back();  // the closing brace
       line += ",\"track\":" + tools::track_to_json(tracker.update(d, still, still)) + "}";
     }
-    std::printf("%s\n", line.c_str());
-    std::fflush(stdout);
-    if (!debug_dir.empty()) write_debug_pictures(debug_dir, stem(file), frame, cloud, detector, d);
+    // A result that cannot be written is lost: say so and stop, since
+    // every later one would be lost too.
+    if (std::printf("%s\n", line.c_str()) < 0 || std::fflush(stdout) != 0) {
+      std::fprintf(stderr, "hrdetect: cannot write the results to stdout: %s\n",
+                   std::strerror(errno));
+      return 1;
+    }
+    if (!debug_dir.empty() &&
+        !write_debug_pictures(debug_dir, stem(file), frame, cloud, detector, d, &error)) {
+      std::fprintf(stderr, "hrdetect: --debug-png: %s\n", error.c_str());
+      all_read = false;
+    }
   }
   return all_read ? 0 : 1;
 }

@@ -11,7 +11,7 @@
 
 #include "common/depth_picture.hpp"
 #include "common/progress.hpp"
-#include "hal/pcd_io.hpp"
+#include "formats/pcd_io.hpp"
 #include "sim_hal/ground_truth.hpp"
 #include "sim_hal/scenario.hpp"
 
@@ -26,7 +26,10 @@ void usage(FILE* out) {
                "  -o, --out DIR     output folder (created if missing)\n"
                "  --png             also write DIR/png/frame_NNNNN.png: depth in false colour\n"
                "                    with the true bar centre lines (white) and ends (magenta)\n"
-               "  --ascii           write ascii PCD instead of binary\n"
+               "  --pcd-format ascii|binary|binary_compressed\n"
+               "                    PCD data encoding (default binary; binary_compressed is\n"
+               "                    PCL's LZF-compressed form)\n"
+               "  --ascii           same as --pcd-format ascii\n"
                "  --max-frames N    render only the first N frames\n"
                "  --seed N          override the scenario's seed\n"
                "  -h, --help        this text\n");
@@ -40,7 +43,8 @@ bool make_dir(const std::string& path) {
 
 int main(int argc, char** argv) {
   std::string scenario_path, out_dir;
-  bool png = false, ascii = false;
+  bool png = false;
+  formats::PcdEncoding encoding = formats::PcdEncoding::kBinary;
   long max_frames = -1;
   long long seed = -1;
   for (int i = 1; i < argc; ++i) {
@@ -60,7 +64,21 @@ int main(int argc, char** argv) {
     } else if (a == "--png") {
       png = true;
     } else if (a == "--ascii") {
-      ascii = true;
+      encoding = formats::PcdEncoding::kAscii;
+    } else if (a == "--pcd-format") {
+      const std::string v = next("--pcd-format");
+      if (v == "ascii") {
+        encoding = formats::PcdEncoding::kAscii;
+      } else if (v == "binary") {
+        encoding = formats::PcdEncoding::kBinary;
+      } else if (v == "binary_compressed") {
+        encoding = formats::PcdEncoding::kBinaryCompressed;
+      } else {
+        std::fprintf(stderr,
+                     "hrsim: --pcd-format must be ascii, binary or binary_compressed, not '%s'\n",
+                     v.c_str());
+        return 2;
+      }
     } else if (a == "--max-frames") {
       max_frames = std::atol(next("--max-frames"));
     } else if (a == "--seed") {
@@ -115,8 +133,7 @@ int main(int argc, char** argv) {
                                 points.data()};
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05zu", f);
-    if (!hal::write_pcd(out_dir + "/" + name + ".pcd", frame,
-                        ascii ? hal::PcdEncoding::kAscii : hal::PcdEncoding::kBinary, &error)) {
+    if (!formats::write_pcd(out_dir + "/" + name + ".pcd", frame, encoding, &error)) {
       std::fprintf(stderr, "\nhrsim: %s\n", error.c_str());
       return 1;
     }

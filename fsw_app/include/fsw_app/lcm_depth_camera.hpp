@@ -43,6 +43,8 @@ class LcmDepthCamera final : public hal::DepthCamera {
 
   std::uint64_t frames_delivered() const { return delivered_.load(); }
   std::uint64_t messages_rejected() const { return rejected_.load(); }
+  // The same verdicts in the terms every checked channel uses.
+  const InputCounts& input_counts() const { return counts_; }
   // Why the last rejected message was rejected (kOk when none was).
   FrameMsgStatus last_rejection() const { return last_rejection_.load(); }
 
@@ -56,6 +58,7 @@ class LcmDepthCamera final : public hal::DepthCamera {
   std::unique_ptr<hal::DepthPoint[]> points_;
   std::atomic<std::uint64_t> delivered_{0}, rejected_{0};
   std::atomic<FrameMsgStatus> last_rejection_{FrameMsgStatus::kOk};
+  InputCounts counts_;
 };
 
 }  // namespace fsw_app

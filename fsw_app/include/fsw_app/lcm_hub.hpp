@@ -7,6 +7,8 @@
 // allocation per message on our side.
 #include <lcm/lcm-cpp.hpp>
 
+#include <utility>
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -15,10 +17,15 @@
 #include <thread>
 #include <vector>
 
+#include "fsw_app/input_checks.hpp"
+
 namespace fsw_app {
 
 // The newest message on a channel, with a count so a reader can tell a new
-// one from the one it already has.
+// one from the one it already has. Each message is decoded into a copy
+// aside and checked (input_checks.hpp): only a whole, finite, in-range
+// message no older than the held one replaces it; a rejected one leaves
+// the held message as it was and is counted by reason.
 template <typename Msg>
 class Mailbox {
  public:
@@ -32,23 +39,32 @@ class Mailbox {
     std::lock_guard<std::mutex> lock(mutex_);
     return sequence_;
   }
-  std::uint64_t decode_errors() const { return decode_errors_.load(); }
+  const InputCounts& input_counts() const { return counts_; }
 
-  // Dispatcher side.
+  // Dispatcher side (one thread: incoming_ needs no lock of its own).
   void deliver(const void* data, std::uint32_t size) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (msg_.decode(data, 0, static_cast<int>(size)) < 0) {
-      ++decode_errors_;
+    InputReject why = InputReject::kUndecodable;
+    if (!decode_and_check(data, size, &incoming_, &why)) {
+      counts_.count_rejected(why);
       return;
     }
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (sequence_ != 0 && !is_fresh(incoming_.utime, msg_.utime)) {
+      counts_.count_rejected(InputReject::kStale);
+      return;
+    }
+    // A swap, not a copy: string fields keep their buffers, no allocation.
+    std::swap(msg_, incoming_);
     ++sequence_;
+    counts_.accepted.fetch_add(1, std::memory_order_relaxed);
   }
 
  private:
   mutable std::mutex mutex_;
-  Msg msg_;
+  Msg msg_{};
+  Msg incoming_{};
   std::uint64_t sequence_ = 0;
-  std::atomic<std::uint64_t> decode_errors_{0};
+  InputCounts counts_;
 };
 
 // A fixed queue of decoded messages for a channel where every message
@@ -56,7 +72,8 @@ class Mailbox {
 // one cycle must not become one). Holds `Capacity` messages; when full, the
 // oldest is overwritten and counted (a newer command, an abort above all,
 // matters more than an older one). No allocation: messages without
-// variable-length fields only.
+// variable-length fields only. Messages are checked as a Mailbox's are,
+// except for age: commands are judged in order by the arm's own rules.
 template <typename Msg, std::size_t Capacity>
 class MessageQueue {
   static_assert(Capacity > 0, "a queue holds at least one message");
@@ -72,16 +89,17 @@ class MessageQueue {
     return true;
   }
   std::uint64_t overflows() const { return overflows_.load(); }
-  std::uint64_t decode_errors() const { return decode_errors_.load(); }
+  const InputCounts& input_counts() const { return counts_; }
 
   // Dispatcher side. Decoded aside first, so a malformed message leaves
   // the queue as it was.
   void deliver(const void* data, std::uint32_t size) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (incoming_.decode(data, 0, static_cast<int>(size)) < 0) {
-      ++decode_errors_;
+    InputReject why = InputReject::kUndecodable;
+    if (!decode_and_check(data, size, &incoming_, &why)) {
+      counts_.count_rejected(why);
       return;
     }
+    std::lock_guard<std::mutex> lock(mutex_);
     if (count_ == Capacity) {
       head_ = (head_ + 1) % Capacity;
       --count_;
@@ -89,6 +107,7 @@ class MessageQueue {
     }
     slots_[(head_ + count_) % Capacity] = incoming_;
     ++count_;
+    counts_.accepted.fetch_add(1, std::memory_order_relaxed);
   }
 
  private:
@@ -96,8 +115,17 @@ class MessageQueue {
   Msg slots_[Capacity]{};
   Msg incoming_{};
   std::size_t head_ = 0, count_ = 0;
-  std::atomic<std::uint64_t> overflows_{0}, decode_errors_{0};
+  std::atomic<std::uint64_t> overflows_{0};
+  InputCounts counts_;
 };
+
+// The input counts of one subscribed channel (the first receiver's, when
+// several in one process take the same channel: they see the same bytes).
+struct ChannelInput {
+  const char* channel = nullptr;  // a channel:: constant or a caller's string that outlives the hub
+  const InputCounts* counts = nullptr;
+};
+constexpr std::size_t kMaxCheckedChannels = 16;
 
 class LcmHub {
  public:
@@ -108,15 +136,23 @@ class LcmHub {
 
   // Each message on `channel` goes, still encoded, to receiver->deliver(data,
   // size) on the dispatcher thread: a Mailbox, a MessageQueue, or anything
-  // with that member (the LCM frame source). Subscribe before start().
+  // with that member (the LCM frame source). A receiver with
+  // input_counts() has them listed in inputs(). Subscribe before start().
   template <typename Receiver>
-  void subscribe(const std::string& channel, Receiver* receiver) {
+  void subscribe(const char* channel, Receiver* receiver) {
+    if constexpr (has_input_counts<Receiver>(0)) register_input(channel, &receiver->input_counts());
     lcm_.subscribeFunction(
         channel,
         +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Receiver* r) {
           r->deliver(rbuf->data, rbuf->data_size);
         },
         receiver);
+  }
+
+  // The checked channels of this process, in subscription order.
+  const ChannelInput* inputs(std::size_t* count) const {
+    *count = input_count_;
+    return inputs_;
   }
 
   // Publishes already-encoded bytes; thread safe.
@@ -141,6 +177,18 @@ class LcmHub {
   std::thread thread_;
   RawSink sink_ = nullptr;
   void* sink_user_ = nullptr;
+  ChannelInput inputs_[kMaxCheckedChannels];
+  std::size_t input_count_ = 0;
+
+  template <typename R>
+  static constexpr auto has_input_counts(int) -> decltype(std::declval<R&>().input_counts(), true) {
+    return true;
+  }
+  template <typename R>
+  static constexpr bool has_input_counts(...) {
+    return false;
+  }
+  void register_input(const char* channel, const InputCounts* counts);
 };
 
 // Encodes one message type into a buffer sized at construction.

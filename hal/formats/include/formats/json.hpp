@@ -1,13 +1,23 @@
 #pragma once
-// A small JSON reader for configuration and scenario files. Every value
-// remembers its line so that errors can say where the problem is. Not for
-// flight paths: it allocates freely.
+// JSON for configuration, scenario and summary files, parsed by
+// nlohmann-json's SAX reader into a small tree in which every value
+// remembers its line, so that errors can say where the problem is. Bounded
+// on hostile input: duplicate keys found in constant time each, nesting
+// limited to kMaxJsonDepth, values to kMaxJsonValues, whole files to
+// kMaxTextFileBytes by the reader
+// (text_file.hpp). Not for flight paths: it allocates freely.
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-namespace hal {
+namespace formats {
+
+constexpr int kMaxJsonDepth = 64;
+// Every value costs about 150 bytes in the tree: a million of them is
+// 150 MB, already more than a configuration could want on a 512 MB board.
+constexpr std::size_t kMaxJsonValues = std::size_t{1} << 20;
 
 class JsonValue {
  public:
@@ -36,4 +46,8 @@ const char* to_string(JsonValue::Type type);
 // "line N: what was wrong".
 bool parse_json(std::string_view text, JsonValue* out, std::string* error);
 
-}  // namespace hal
+// Reads (bounded, regular files only) and parses a file. On failure *error
+// is "PATH:N: what was wrong" (N the line) or "PATH: why it cannot be read".
+bool load_json_file(const std::string& path, JsonValue* out, std::string* error);
+
+}  // namespace formats

@@ -6,16 +6,16 @@
 #include <string>
 
 #include "estimator/config.hpp"
-#include "hal/json.hpp"
+#include "formats/json.hpp"
 
-namespace tools {
+namespace formats {
 
 bool load_detector_config(const std::string& path, estimator::DetectorConfig* cfg,
                           std::string* error);
 bool parse_detector_config(const std::string& text, const std::string& path,
                            estimator::DetectorConfig* cfg, std::string* error);
 // The same from an already parsed object (a section of a larger file).
-bool read_detector_config(const hal::JsonValue& object, const std::string& path,
+bool read_detector_config(const formats::JsonValue& object, const std::string& path,
                           estimator::DetectorConfig* cfg, std::string* error);
 
-}  // namespace tools
+}  // namespace formats

@@ -1,15 +1,14 @@
-#include "detector_config_io.hpp"
+#include "formats/detector_config_io.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
-#include "hal/json.hpp"
+#include "formats/json.hpp"
+#include "formats/text_file.hpp"
 
-namespace tools {
+namespace formats {
 namespace {
 
-using hal::JsonValue;
+using formats::JsonValue;
 
 struct FloatKey {
   const char* name;
@@ -105,14 +104,14 @@ bool parse_detector_config(const std::string& text, const std::string& path,
                            estimator::DetectorConfig* cfg, std::string* error) {
   JsonValue root;
   std::string json_error;
-  if (!hal::parse_json(text, &root, &json_error)) {
+  if (!formats::parse_json(text, &root, &json_error)) {
     *error = path + ":" + json_error.substr(5);
     return false;
   }
   return read_detector_config(root, path, cfg, error);
 }
 
-bool read_detector_config(const hal::JsonValue& root, const std::string& path,
+bool read_detector_config(const formats::JsonValue& root, const std::string& path,
                           estimator::DetectorConfig* cfg, std::string* error) {
   if (!root.is_object()) {
     *error = at(path, root) + "the detector configuration must be a JSON object";
@@ -173,14 +172,12 @@ bool read_detector_config(const hal::JsonValue& root, const std::string& path,
 
 bool load_detector_config(const std::string& path, estimator::DetectorConfig* cfg,
                           std::string* error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    *error = path + ": cannot open the configuration file";
+  std::string text;
+  if (formats::read_file_bounded(path, formats::kMaxTextFileBytes, &text, error) !=
+      formats::FileStatus::kOk) {
     return false;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_detector_config(text.str(), path, cfg, error);
+  return parse_detector_config(text, path, cfg, error);
 }
 
-}  // namespace tools
+}  // namespace formats
