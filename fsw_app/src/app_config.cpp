@@ -183,7 +183,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     }
   }
   if (const JsonValue* v = top.object("estimator")) {
-    if (!formats::read_detector_config(*v, path, &c.estimator, error)) return false;
+    if (!formats::read_detector_config(*v, path, &c.estimator, error, "estimator.")) return false;
   }
   if (const JsonValue* v = top.object("arm")) {
     Section s(*v, "arm", path, error);

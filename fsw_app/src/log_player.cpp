@@ -11,19 +11,52 @@ namespace {
 // A pause in the recording longer than this (the recorder stopped, say)
 // is played as this long.
 constexpr std::int64_t kLongestGapUs = 2000000;
-// The next event that reads whole, or null at the end of the file. LCM's
-// reader returns null both at the end and where an event is not followed
-// by a sync word (damaged bytes): it then drops that event, and the next
-// call scans forward to the next sync word. Each such stretch is counted.
-// Every null that is not the end consumed bytes, so this ends.
-const lcm::LogEvent* read_next_whole_event(lcm::LogFile& log, std::uint64_t* damaged) {
-  for (;;) {
-    if (const lcm::LogEvent* e = log.readNextEvent()) return e;
-    std::FILE* f = log.getFilePtr();
-    if (f == nullptr || std::feof(f) || std::ferror(f)) return nullptr;
-    ++*damaged;
+// Reads a log's events, past damage. LCM's reader returns null both at the
+// end and where an event is not followed by a sync word (damaged bytes): it
+// then drops that event, and the next call scans forward to the next sync
+// word. It also returns null at "the end" when an event's header claims
+// more data than the file holds (a corrupt datalen such as 0x7ffffff0): it
+// reads to the end of the file looking for it. So an end of file that is
+// not just after the last good event is damage too: the reader goes back
+// to one byte past where the bad event began and scans on from there, once
+// after each good event (a scan that finds nothing more ends the log, so
+// trailing garbage costs one scan, not one per byte). Each stretch is
+// counted. Every retry starts further into the file than the last, so
+// this ends.
+class EventReader {
+ public:
+  explicit EventReader(lcm::LogFile& log) : log_(log) {}
+
+  const lcm::LogEvent* next(std::uint64_t* damaged) {
+    for (;;) {
+      std::FILE* f = log_.getFilePtr();
+      if (f == nullptr) return nullptr;
+      if (const lcm::LogEvent* e = log_.readNextEvent()) {
+        good_end_ = std::ftell(f);
+        may_retry_ = true;
+        return e;
+      }
+      if (std::ferror(f)) return nullptr;
+      if (!std::feof(f)) {
+        ++*damaged;  // bytes that were no event, skipped to the next sync word
+        continue;
+      }
+      // At the end: truly, or after an event that claimed too much?
+      std::fseek(f, 0, SEEK_END);
+      const long retry_from = good_end_ + 1;
+      if (!may_retry_ || good_end_ < 0 || retry_from >= std::ftell(f)) return nullptr;
+      ++*damaged;
+      may_retry_ = false;
+      std::clearerr(f);
+      std::fseek(f, retry_from, SEEK_SET);
+    }
   }
-}
+
+ private:
+  lcm::LogFile& log_;
+  long good_end_ = 0;  // just after the last event read whole (the file's start at first)
+  bool may_retry_ = true;
+};
 
 }  // namespace
 
@@ -49,7 +82,8 @@ bool LogPlayer::open(std::string* error) {
   }
   frames_in_log_ = 0;
   std::uint64_t damaged = 0;
-  while (const lcm::LogEvent* e = read_next_whole_event(log, &damaged)) {
+  EventReader reader(log);
+  while (const lcm::LogEvent* e = reader.next(&damaged)) {
     if (e->channel == channel::kDepthFrame) ++frames_in_log_;
   }
   if (frames_in_log_ == 0) {
@@ -89,8 +123,9 @@ void LogPlayer::play() {
   lcm::LogFile log(path_, "r");
   std::int64_t last_event_us = -1, play_at_us = clock_.now_us();
   std::uint64_t damaged = 0;
+  EventReader reader(log);
   while (running_.load() && log.good()) {
-    const lcm::LogEvent* e = read_next_whole_event(log, &damaged);
+    const lcm::LogEvent* e = reader.next(&damaged);
     damaged_.store(damaged);
     if (e == nullptr) break;
     // Event stamps are the recorder's receive times; only their

@@ -58,6 +58,19 @@ void test_mistakes_name_file_line_and_key(void**) {
   expect_error("{\"ports\": {\"servo_baud\": 1.5e7}}", {"ports.servo_baud"});
   expect_error("{\"perch\": {\"max_grasp_attempts\": 2.5}}", {"perch.max_grasp_attempts", "whole"});
   expect_error("{\"estimator\": {\"plane_iterations\": -1}}", {"cfg.json:1:", "plane_iterations"});
+  // Found from outside: a hexadecimal number was read as 20, an impossible
+  // gripper angle was taken, and estimator keys were named without their
+  // section and at the section's line.
+  expect_error("{\"arm_rate_hz\": 0x14}", {"cfg.json:1:", "syntax error"});
+  expect_error("{\"estimator\": {\n\"seed\": 1,\n\"gripper_angle_deg\": -1000}}",
+               {"cfg.json:3:", "\"estimator.gripper_angle_deg\" must be a number within 0 .. 90"});
+  expect_error("{\"estimator\": {\n\n\"plane_iterationz\": 5}}",
+               {"cfg.json:3:", "unknown key \"estimator.plane_iterationz\""});
+  expect_error("{\"estimator\": {\"handrail\": {\"kind\": \"oval\"}}}",
+               {"\"estimator.handrail.kind\" must be"});
+  expect_error("{\"estimator\": {\"budget_us\": 2.5}}", {"\"estimator.budget_us\"", "whole"});
+  const std::string hundred_digits = "{\"arm_rate_hz\": 1" + std::string(100, '0') + "}";
+  expect_error(hundred_digits.c_str(), {"cfg.json:1:", "arm_rate_hz", "within"});
   expect_error("{\"camera\": 3}", {"camera", "must be an object"});
   expect_error("[1, 2]", {"must be a JSON object"});
   expect_error("{\"lcm_url\": ", {"cfg.json:"});

@@ -420,6 +420,46 @@ void test_damaged_log_replays_the_rest(void**) {
   std::remove(rec.c_str());
 }
 
+// An event whose header claims 0x7ffffff0 bytes (found from outside: the
+// replay stopped there with no word of damage): LCM's reader takes the rest
+// of the file for it and reports the end. The player counts the damage,
+// goes back past that event's start, and plays every frame after it.
+void test_event_claiming_too_much_is_damage_not_the_end(void**) {
+  const std::string rec = record_run();
+  const std::string damaged = work_path("claims_too_much.lcm");
+  {
+    lcm::LogFile in(rec, "r");
+    lcm::LogFile out(damaged, "w");
+    assert_true(in.good() && out.good());
+    int frames = 0;
+    while (const lcm::LogEvent* e = in.readNextEvent()) {
+      lcm::LogEvent copy = *e;
+      assert_int_equal(out.writeEvent(&copy), 0);
+      if (e->channel == "DEPTH_FRAME" && ++frames == 4) {
+        // sync word, event number, timestamp, channel length, data length
+        // (all big-endian), channel: then far fewer bytes than claimed.
+        std::fflush(out.getFilePtr());
+        const std::uint8_t header[] = {0xED, 0xA1, 0xDA, 0x01, 0,    0,    0,    0,   0, 0,
+                                       0,    99,   0,    0,    0,    0,    0,    0,   0, 1,
+                                       0,    0,    0,    11,   0x7f, 0xff, 0xff, 0xf0};
+        std::fwrite(header, 1, sizeof header, out.getFilePtr());
+        std::fwrite("DEPTH_FRAME", 1, 11, out.getFilePtr());
+        std::fwrite("short", 1, 5, out.getFilePtr());
+      }
+    }
+  }
+  const Replay replay = replay_into_estimator(damaged, "rep_claims");
+  const Run& r = replay.run;
+  int rec_frames = 0;
+  const auto recorded = read_estimates(rec, &rec_frames);
+  assert_int_equal(r.number("replay_damaged"), 1);
+  assert_int_equal(r.number("replayed_frames"), rec_frames);
+  assert_true(r.output.find("damaged log") != std::string::npos);
+  assert_estimates_agree(recorded, replay, rec_frames - 1);
+  std::remove(damaged.c_str());
+  std::remove(rec.c_str());
+}
+
 void test_bad_replay_requests_are_refused_by_name(void**) {
   Run r = run_fsw_app({"--frames-from-log", work_path("missing.lcm")});
   assert_int_equal(r.exit_status, 2);
@@ -508,6 +548,7 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_frames_cross_lcm_and_bad_messages_are_counted),
       cmocka_unit_test(test_recorded_run_replays_into_the_estimator_alone),
       cmocka_unit_test(test_damaged_log_replays_the_rest),
+      cmocka_unit_test(test_event_claiming_too_much_is_damage_not_the_end),
       cmocka_unit_test(test_bad_replay_requests_are_refused_by_name),
       cmocka_unit_test(test_lcm_logplayer_feeds_an_estimator_process),
   };

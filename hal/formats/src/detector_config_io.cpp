@@ -1,6 +1,7 @@
 #include "formats/detector_config_io.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "formats/json.hpp"
 #include "formats/text_file.hpp"
@@ -112,7 +113,12 @@ bool parse_detector_config(const std::string& text, const std::string& path,
 }
 
 bool read_detector_config(const formats::JsonValue& root, const std::string& path,
-                          estimator::DetectorConfig* cfg, std::string* error) {
+                          estimator::DetectorConfig* cfg, std::string* error,
+                          const std::string& key_prefix) {
+  // Keys are named as the file spells them: "estimator.seed" in a section.
+  const auto quoted = [&key_prefix](const std::string& key) {
+    return "\"" + key_prefix + key + "\"";
+  };
   if (!root.is_object()) {
     *error = at(path, root) + "the detector configuration must be a JSON object";
     return false;
@@ -122,14 +128,38 @@ bool read_detector_config(const formats::JsonValue& root, const std::string& pat
     const std::string& key = m.first;
     const JsonValue& v = m.second;
     if (key == "handrail") {
-      if (!read_handrail(v, path, &c.handrail, error)) return false;
+      if (!read_handrail(v, path, &c.handrail, error)) {
+        if (!key_prefix.empty()) {
+          // read_handrail names "handrail.*"; give it the section's prefix.
+          const std::size_t q = error->find("\"handrail");
+          if (q != std::string::npos) error->insert(q + 1, key_prefix);
+        }
+        return false;
+      }
       continue;
     }
     bool known = false;
-    if (key == "gripper_angle_deg" || key == "seed" || key == "budget_us") {
+    // The three keys not copied straight into a float or count field, each
+    // with its own range: a gripper angle the arm can take (0 to 90 deg,
+    // as hrdetect --gripper-angle), a seed that is a whole number, a frame
+    // budget of 1 us to 10 s.
+    struct Ranged {
+      const char* name;
+      double lo, hi;
+      bool whole;
+    };
+    static const Ranged kRanged[] = {{"gripper_angle_deg", 0.0, 90.0, false},
+                                     {"seed", 0.0, 9007199254740992.0, true},
+                                     {"budget_us", 1.0, 1e7, true}};
+    for (const Ranged& r : kRanged) {
+      if (key != r.name) continue;
       known = true;
-      if (!v.is_number()) {
-        *error = at(path, v) + "\"" + key + "\" must be a number";
+      if (!v.is_number() || !(v.number >= r.lo && v.number <= r.hi) ||
+          (r.whole && std::floor(v.number) != v.number)) {
+        char range[96];
+        std::snprintf(range, sizeof range, " must be a %s within %g .. %g",
+                      r.whole ? "whole number" : "number", r.lo, r.hi);
+        *error = at(path, v) + quoted(key) + range;
         return false;
       }
       if (key == "gripper_angle_deg")
@@ -141,7 +171,7 @@ bool read_detector_config(const formats::JsonValue& root, const std::string& pat
       if (key != k.name) continue;
       known = true;
       if (!v.is_number()) {
-        *error = at(path, v) + "\"" + key + "\" must be a number";
+        *error = at(path, v) + quoted(key) + " must be a number";
         return false;
       }
       c.*k.field = static_cast<float>(v.number);
@@ -150,20 +180,20 @@ bool read_detector_config(const formats::JsonValue& root, const std::string& pat
       if (key != k.name) continue;
       known = true;
       if (!v.is_number() || v.number < 0 || v.number > 1e7 || std::floor(v.number) != v.number) {
-        *error = at(path, v) + "\"" + key + "\" must be a non-negative integer";
+        *error = at(path, v) + quoted(key) + " must be a non-negative integer";
         return false;
       }
       c.*k.field = static_cast<std::uint32_t>(v.number);
     }
     if (!known) {
-      *error = at(path, v) + "unknown key \"" + key + "\"";
+      *error = at(path, v) + "unknown key " + quoted(key);
       return false;
     }
   }
   if (const char* bad = estimator::validate(c)) {
     const JsonValue* v = root.find(bad);
-    *error = path + ":" + std::to_string(v ? v->line : root.line) + ": \"" + bad +
-             "\" is out of range or inconsistent with the other settings";
+    *error = path + ":" + std::to_string(v ? v->line : root.line) + ": " + quoted(bad) +
+             " is out of range or inconsistent with the other settings";
     return false;
   }
   *cfg = c;

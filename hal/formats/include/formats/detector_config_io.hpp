@@ -14,8 +14,11 @@ bool load_detector_config(const std::string& path, estimator::DetectorConfig* cf
                           std::string* error);
 bool parse_detector_config(const std::string& text, const std::string& path,
                            estimator::DetectorConfig* cfg, std::string* error);
-// The same from an already parsed object (a section of a larger file).
+// The same from an already parsed object (a section of a larger file, whose
+// name with a dot is `key_prefix`, e.g. "estimator.": errors name the key
+// as the file spells it).
 bool read_detector_config(const formats::JsonValue& object, const std::string& path,
-                          estimator::DetectorConfig* cfg, std::string* error);
+                          estimator::DetectorConfig* cfg, std::string* error,
+                          const std::string& key_prefix = "");
 
 }  // namespace formats
