@@ -1,0 +1,154 @@
+// hrdetect against the inputs testing from outside found it mishandled,
+// each now with a clear error naming the file and the good files still
+// processed: /dev/zero (it grew to 2.1 GB), a FIFO named g.pcd in a folder
+// (it hung), a 141-byte header claiming 8192 x 8192 points (1.3 GB), a
+// folder named x.pcd, an empty folder and an unwritable stdout or
+// --debug-png folder (exit 0 before).
+//   argv[1]: the hrdetect program
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "child_process.hpp"
+#include "cmocka_cpp.hpp"
+
+namespace {
+
+std::string g_program;
+std::string g_dir;
+
+std::string source(const std::string& rel) {
+  const char* d = std::getenv("HRP_SOURCE_DIR");
+  return std::string(d ? d : ".") + "/" + rel;
+}
+
+struct Result {
+  int exit_status = -1;
+  std::string out;  // stdout and stderr together
+  int json_lines = 0;
+};
+
+Result run(const std::vector<std::string>& args, const std::string& stdout_path = "") {
+  const std::string log = g_dir + "/out.txt";
+  Result r;
+  if (stdout_path.empty()) {
+    r.exit_status =
+        testing_support::wait_for_exit(testing_support::spawn_program(g_program, args, log));
+  } else {
+    // stdout to stdout_path, stderr to the log.
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, stdout_path.c_str(), O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> all = args;
+    all.insert(all.begin(), g_program);
+    std::vector<char*> argv;
+    for (std::string& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    assert_int_equal(posix_spawn(&pid, g_program.c_str(), &actions, nullptr, argv.data(), environ),
+                     0);
+    posix_spawn_file_actions_destroy(&actions);
+    r.exit_status = testing_support::wait_for_exit(pid);
+  }
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.out = ss.str();
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);)
+    r.json_lines += line.rfind("{\"frame\"", 0) == 0;
+  return r;
+}
+
+void expect_in(const Result& r, const std::string& text) {
+  if (r.out.find(text) == std::string::npos) {
+    fail_msg("expected \"%s\" in hrdetect's output:\n%s", text.c_str(), r.out.c_str());
+  }
+}
+
+const std::string kGood = source("tests/data/table2-iss-1.pcd");
+
+void test_a_device_is_refused_and_the_next_file_processed(void**) {
+  const Result r = run({"/dev/zero", kGood});
+  assert_int_equal(r.exit_status, 1);
+  expect_in(r, "/dev/zero: not a regular file");
+  assert_int_equal(r.json_lines, 1);
+}
+
+void test_a_fifo_and_a_folder_named_pcd_are_refused_not_waited_on(void**) {
+  const std::string folder = g_dir + "/frames";
+  mkdir(folder.c_str(), 0755);
+  assert_int_equal(mkfifo((folder + "/g.pcd").c_str(), 0600), 0);
+  mkdir((folder + "/x.pcd").c_str(), 0755);
+  assert_int_equal(symlink(kGood.c_str(), (folder + "/a.pcd").c_str()), 0);
+  const Result r = run({folder});
+  assert_int_equal(r.exit_status, 1);
+  expect_in(r, "g.pcd: not a regular file (a device, FIFO or socket)");
+  expect_in(r, "x.pcd: not a regular file (a folder)");
+  assert_int_equal(r.json_lines, 1);
+}
+
+void test_a_header_claiming_a_huge_frame_is_refused_before_allocating(void**) {
+  const std::string path = g_dir + "/huge.pcd";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs(
+      "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 8192\nHEIGHT "
+      "8192\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 67108864\nDATA binary\n",
+      f);
+  std::fclose(f);
+  const Result r = run({path, kGood});
+  assert_int_equal(r.exit_status, 1);
+  expect_in(r, "huge.pcd: WIDTH x HEIGHT 8192 x 8192");
+  expect_in(r, "over the limit of");
+  assert_int_equal(r.json_lines, 1);
+}
+
+void test_an_empty_folder_is_an_error(void**) {
+  const std::string empty = g_dir + "/empty";
+  mkdir(empty.c_str(), 0755);
+  const Result r = run({empty});
+  assert_int_equal(r.exit_status, 1);
+  expect_in(r, "no .pcd files in this folder");
+}
+
+void test_results_that_cannot_be_written_are_an_error(void**) {
+  Result r = run({kGood}, "/dev/full");
+  assert_int_equal(r.exit_status, 1);
+  expect_in(r, "cannot write the results to stdout");
+  // /dev/full is no folder: every picture fails to write.
+  r = run({"--debug-png", "/dev/full", kGood});
+  assert_int_equal(r.exit_status, 1);
+  expect_in(r, "--debug-png:");
+  assert_int_equal(r.json_lines, 1);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s HRDETECT\n", argv[0]);
+    return 2;
+  }
+  g_program = argv[1];
+  char dir[] = "/tmp/hrp_hrdetect_XXXXXX";
+  if (!mkdtemp(dir)) return 1;
+  g_dir = dir;
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_a_device_is_refused_and_the_next_file_processed),
+      cmocka_unit_test(test_a_fifo_and_a_folder_named_pcd_are_refused_not_waited_on),
+      cmocka_unit_test(test_a_header_claiming_a_huge_frame_is_refused_before_allocating),
+      cmocka_unit_test(test_an_empty_folder_is_an_error),
+      cmocka_unit_test(test_results_that_cannot_be_written_are_an_error),
+  };
+  const int failed = cmocka_run_group_tests(tests, nullptr, nullptr);
+  const std::string cleanup = "rm -rf '" + g_dir + "'";
+  if (std::system(cleanup.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", dir);
+  return failed;
+}
