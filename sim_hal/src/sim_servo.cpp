@@ -10,7 +10,12 @@ using dynamixel::Instruction;
 
 constexpr double kRadPerUnit = 300.0 * 3.14159265358979323846 / 180.0 / 1023.0;
 constexpr double kSpeedUnitRadS = 0.111 * 2.0 * 3.14159265358979323846 / 60.0;
-constexpr std::uint8_t kFirstRam = 24;       // EEPROM below, locked while torque is on
+constexpr std::uint8_t kFirstRam = 24;  // EEPROM below
+// With Lock (47) set, only Torque Enable (24) to Torque Limit (35) can be
+// written (the AX-12 manual, example 20: a write to Punch then answers with
+// the range error bit); only a power cycle clears it.
+constexpr std::uint8_t kFirstUnlocked = 24, kLastUnlocked = 35;
+constexpr std::uint8_t kLock = 47;
 constexpr std::uint8_t kFirstReadOnly = 36;  // present position .. moving
 constexpr std::uint8_t kTableEnd = 50;
 }  // namespace
@@ -47,16 +52,48 @@ void SimServo::reset_table() {
   table_[16] = 2;     // status return level
   table_[17] = 0x24;  // alarm LED: overheating, overload
   table_[18] = 0x24;  // alarm shutdown: overheating, overload
+  init_ram();
+}
+
+void SimServo::init_ram() {
+  std::memset(table_ + kFirstRam, 0, kTableEnd - kFirstRam);
   table_[26] = table_[27] = 1;
   table_[28] = table_[29] = 32;
-  set16(34, 1023);  // torque limit (copied from max torque at power-up)
-  set16(48, 32);    // punch
+  set16(34, table16(14));  // torque limit: copied from max torque at power-up
+  set16(48, 32);           // punch
   const std::uint16_t here = static_cast<std::uint16_t>(
       std::clamp(std::lround(512.0 + position_rad_ / kRadPerUnit), 0L, 1023L));
   set16(30, here);  // goal = present: no jump at power-up
   set16(36, here);
   table_[42] = static_cast<std::uint8_t>(std::lround(physics_.supply_v * 10.0));
   table_[43] = static_cast<std::uint8_t>(std::lround(temperature_c_));
+  pending_n_ = 0;
+}
+
+void SimServo::power_cycle() {
+  init_ram();
+  // Latched alarms are the firmware's state and go with the power; a cause
+  // still present (heat, load) raises them again.
+  overloaded_ = false;
+  overload_s_ = 0.0;
+  speed_rad_s_ = 0.0;
+}
+
+bool SimServo::understands_baud(std::uint32_t host_bps) const {
+  const double own = static_cast<double>(baud_bps());
+  return std::fabs(static_cast<double>(host_bps) - own) <= 0.03 * own;
+}
+
+bool SimServo::answers(std::uint8_t instruction) const {
+  const Instruction inst = static_cast<Instruction>(instruction);
+  switch (table_[16]) {
+    case 0:
+      return inst == Instruction::kPing;
+    case 1:
+      return inst == Instruction::kPing || inst == Instruction::kRead;
+    default:
+      return true;
+  }
 }
 
 std::uint8_t SimServo::error_bits() const {
@@ -77,12 +114,13 @@ void SimServo::alarm_shutdown_if_needed() {
 
 std::uint8_t SimServo::apply_write(std::uint8_t address, const std::uint8_t* data, std::size_t n) {
   if (address >= kTableEnd || address + n > kTableEnd) return dynamixel::kErrorRange;
-  const bool torque_on = table_[24] != 0;
+  const bool locked = table_[kLock] != 0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint8_t a = static_cast<std::uint8_t>(address + k);
-    if (a < kFirstRam && (torque_on || table_[47])) return dynamixel::kErrorInstruction;
-    if (a >= kFirstReadOnly && a != 47 && a != 48 && a != 49) return dynamixel::kErrorRange;
+    if (locked && (a < kFirstUnlocked || a > kLastUnlocked)) return dynamixel::kErrorRange;
+    if (a >= kFirstReadOnly && a != kLock && a != 48 && a != 49) return dynamixel::kErrorRange;
     if (a < 3) return dynamixel::kErrorRange;  // model and firmware
+    if (a == kLock && data[k] > 1) return dynamixel::kErrorRange;
   }
   // A goal outside the angle limits is refused with the angle-limit bit.
   if (address <= 31 && address + n >= 32) {
@@ -156,6 +194,13 @@ bool SimServo::handle(const dynamixel::InstructionPacket& packet, std::uint8_t* 
       table_[44] = 0;
       break;
     case Instruction::kReset:
+      // Factory defaults would rewrite the EEPROM the lock protects: while
+      // locked the servo refuses (our reading; the manuals say only that a
+      // locked servo unlocks by a power cycle alone).
+      if (table_[kLock]) {
+        err = dynamixel::kErrorRange;
+        break;
+      }
       reset_table();
       break;
     case Instruction::kSyncWrite: {
@@ -174,15 +219,14 @@ bool SimServo::handle(const dynamixel::InstructionPacket& packet, std::uint8_t* 
   alarm_shutdown_if_needed();
   *error = static_cast<std::uint8_t>(err | error_bits());
   if (broadcast) return false;
-  const Instruction inst = static_cast<Instruction>(packet.instruction);
-  switch (table_[16]) {
-    case 0:
-      return inst == Instruction::kPing;
-    case 1:
-      return inst == Instruction::kPing || inst == Instruction::kRead;
-    default:
-      return true;
-  }
+  return answers(packet.instruction);
+}
+
+bool SimServo::handle_bad_checksum(const dynamixel::InstructionPacket& packet,
+                                   std::uint8_t* error) {
+  *error = static_cast<std::uint8_t>(dynamixel::kErrorChecksum | error_bits());
+  if (packet.id == dynamixel::kBroadcastId) return false;
+  return answers(packet.instruction);
 }
 
 void SimServo::step(double dt_s, double external_torque_nm) {

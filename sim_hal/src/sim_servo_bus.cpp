@@ -1,6 +1,10 @@
 #include "sim_hal/sim_servo_bus.hpp"
 
+// The kernel's termios2 (the rate as a number, as our driver sets it with
+// BOTHER); glibc's <termios.h> cannot be included beside it.
+#include <asm/termbits.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -66,6 +70,19 @@ void SimServoBus::set_position(std::uint8_t id, double angle_rad) {
   if (SimServo* s = find(id)) s->set_position_rad(angle_rad);
 }
 
+void SimServoBus::power_cycle(std::uint8_t id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (SimServo* s = find(id)) s->power_cycle();
+}
+
+std::uint32_t SimServoBus::line_baud() const {
+  // On the master, the terminal ioctls read the slave's settings (Linux
+  // hands them to the linked tty), so this is the rate the client chose.
+  struct termios2 tio;
+  if (pty_.master_fd() < 0 || ioctl(pty_.master_fd(), TCGETS2, &tio) != 0) return 0;
+  return tio.c_ospeed;
+}
+
 bool SimServoBus::servo(std::uint8_t id, SimServo* out) const {
   std::lock_guard<std::mutex> lock(mutex_);
   for (const SimServo& s : servos_) {
@@ -103,8 +120,14 @@ void SimServoBus::run() {
     if (n <= 0) continue;
     BusFaults faults = this->faults();
     if (faults.echo) line_.send_now(rx, static_cast<std::size_t>(n));
+    // The rate these bytes came at: read once per read(), as a client
+    // changes it only between packets. Unknown (0) is heard by all.
+    const std::uint32_t host_bps = line_baud();
     for (ssize_t k = 0; k < n; ++k) {
-      if (parser.push(rx[k]) != dynamixel::ParseEvent::kPacket) continue;
+      const dynamixel::ParseEvent event = parser.push(rx[k]);
+      if (event != dynamixel::ParseEvent::kPacket && event != dynamixel::ParseEvent::kBadChecksum) {
+        continue;
+      }
       ++packets_;
       const dynamixel::InstructionPacket packet = parser.packet();
       std::uint8_t out[dynamixel::kMaxPacket];
@@ -114,9 +137,17 @@ void SimServoBus::run() {
         std::lock_guard<std::mutex> lock(mutex_);
         for (SimServo& s : servos_) {
           if (packet.id != s.id() && packet.id != dynamixel::kBroadcastId) continue;
+          // At another rate the servo's UART sees only garbage. The check
+          // comes before the packet is handled, so a change of the Baud
+          // Rate applies from the packet after the one that wrote it (whose
+          // reply still goes out).
+          if (host_bps != 0 && !s.understands_baud(host_bps)) continue;
           std::uint8_t error = 0, params[dynamixel::kMaxParams];
           std::size_t n_params = 0;
-          if (s.handle(packet, &error, params, &n_params)) {
+          const bool due = event == dynamixel::ParseEvent::kPacket
+                               ? s.handle(packet, &error, params, &n_params)
+                               : s.handle_bad_checksum(packet, &error);
+          if (due) {
             out_n = dynamixel::encode_status(s.id(), error, params, n_params, out);
             delay_us = s.return_delay_us();
           }

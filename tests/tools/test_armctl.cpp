@@ -52,8 +52,8 @@ std::vector<std::string> on(const sim_hal::SimServoBus& sim, std::vector<std::st
 
 void expect(const Run& r, int status, const std::string& text) {
   if (r.status != status || !r.says(text)) {
-    print_error("exit %d (expected %d), output:\n%s(expected to contain '%s')\n", r.status,
-                status, r.out.c_str(), text.c_str());
+    print_error("exit %d (expected %d), output:\n%s(expected to contain '%s')\n", r.status, status,
+                r.out.c_str(), text.c_str());
     fail();
   }
 }
@@ -99,9 +99,12 @@ void test_a_silent_servo_exits_1(void**) {
   sim_hal::BusFaults silent;
   silent.no_reply = true;
   s.sim.set_faults(silent);
-  for (const std::vector<std::string>& words :
-       {std::vector<std::string>{"torque", "1", "on"}, {"move", "1", "10"}, {"write", "1", "25", "1"},
-        {"recover", "1"}, {"ping", "1"}, {"read", "1", "36", "2"}}) {
+  for (const std::vector<std::string>& words : {std::vector<std::string>{"torque", "1", "on"},
+                                                {"move", "1", "10"},
+                                                {"write", "1", "25", "1"},
+                                                {"recover", "1"},
+                                                {"ping", "1"},
+                                                {"read", "1", "36", "2"}}) {
     const Run r = run(on(s.sim, words));
     expect(r, 1, "TIMEOUT");
   }

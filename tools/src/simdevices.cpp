@@ -3,6 +3,7 @@
 // ones: AX-12A servos (IDs 1 and 2) on one bus, the gripper board on
 // another. Prints their paths, then takes fault commands on stdin until
 // "quit", end of input or Ctrl-C.
+#include <errno.h>
 #include <poll.h>
 #include <signal.h>
 #include <unistd.h>
@@ -36,7 +37,7 @@ void usage(FILE* out) {
                "  -h, --help         this text\n\n"
                "commands on stdin (faults switch at once):\n"
                "  servo drop P | corrupt P | late US | noreply on|off | echo on|off\n"
-               "  servo overload ID on|off | overheat ID on|off | torque ID NM\n"
+               "  servo overload ID on|off | overheat ID on|off | torque ID NM | powercycle ID\n"
                "  gripper drop P | corrupt P | noreply on|off | echo on|off | handrail COUNTS|off\n"
                "  status | help | quit\n");
 }
@@ -85,6 +86,80 @@ void print_status(sim_hal::SimServoBus& servos, const std::vector<std::uint8_t>&
               g.safe_start ? "safe start" : "running");
 }
 
+struct Devices {
+  sim_hal::SimServoBus& servos;
+  const std::vector<std::uint8_t>& ids;
+  sim_hal::SimGripperBoard& gripper;
+  sim_hal::BusFaults servo_faults, gripper_faults;
+};
+
+// A servo ID word: 0..253, the whole word.
+bool parse_id(const std::string& word, int* id) {
+  char* end = nullptr;
+  const long v = std::strtol(word.c_str(), &end, 10);
+  if (word.empty() || *end != '\0' || v < 0 || v >= dynamixel::kBroadcastId) return false;
+  *id = static_cast<int>(v);
+  return true;
+}
+
+// Runs one command line and prints its answer; true for "quit".
+bool run_command(const std::string& text, Devices* d) {
+  std::istringstream in(text);
+  std::string device, what;
+  in >> device >> what;
+  bool ok = true;
+  if (device.empty()) return false;
+  if (device == "quit") return true;
+  if (device == "help") {
+    usage(stdout);
+  } else if (device == "status") {
+    print_status(d->servos, d->ids, d->gripper);
+  } else if (device == "servo" && (what == "overload" || what == "overheat")) {
+    int id = -1;
+    std::string id_word, state;
+    in >> id_word >> state;
+    bool on = false;
+    ok = parse_id(id_word, &id) && parse_on_off(state, &on);
+    if (ok) {
+      sim_hal::SimServo s;
+      d->servos.servo(static_cast<std::uint8_t>(id), &s);
+      std::uint8_t bits = s.error_bits();
+      const std::uint8_t bit =
+          what == "overload" ? dynamixel::kErrorOverload : dynamixel::kErrorOverheating;
+      bits = on ? (bits | bit) : (bits & ~bit);
+      d->servos.force_error_bits(static_cast<std::uint8_t>(id), bits);
+    }
+  } else if (device == "servo" && what == "torque") {
+    int id = -1;
+    double nm = 0.0;
+    std::string id_word;
+    in >> id_word >> nm;
+    ok = parse_id(id_word, &id) && !in.fail();
+    if (ok) d->servos.set_external_torque(static_cast<std::uint8_t>(id), nm);
+  } else if (device == "servo" && what == "powercycle") {
+    int id = -1;
+    std::string id_word;
+    in >> id_word;
+    ok = parse_id(id_word, &id);
+    if (ok) d->servos.power_cycle(static_cast<std::uint8_t>(id));
+  } else if (device == "servo") {
+    ok = apply_line_fault(in, what, &d->servo_faults);
+    if (ok) d->servos.set_faults(d->servo_faults);
+  } else if (device == "gripper" && what == "handrail") {
+    std::string value;
+    in >> value;
+    d->gripper.set_handrail_raw(value == "off" ? -1 : std::atoi(value.c_str()));
+  } else if (device == "gripper") {
+    ok = apply_line_fault(in, what, &d->gripper_faults);
+    if (ok) d->gripper.set_faults(d->gripper_faults);
+  } else {
+    ok = false;
+  }
+  std::printf("%s\n", ok ? "ok" : "? not understood (type help)");
+  std::fflush(stdout);
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -100,9 +175,10 @@ int main(int argc, char** argv) {
       std::stringstream list(argv[++i]);
       std::string item;
       while (std::getline(list, item, ',')) {
-        const long id = std::atol(item.c_str());
-        if (id < 0 || id >= dynamixel::kBroadcastId) {
-          std::fprintf(stderr, "simdevices: servo ID %s is outside 0..253\n", item.c_str());
+        int id = -1;
+        if (!parse_id(item, &id)) {
+          std::fprintf(stderr, "simdevices: servo ID '%s' is not a number in 0..253\n",
+                       item.c_str());
           return 2;
         }
         ids.push_back(static_cast<std::uint8_t>(id));
@@ -136,67 +212,40 @@ int main(int argc, char** argv) {
   }
   signal(SIGINT, on_signal);
   signal(SIGTERM, on_signal);
-  sim_hal::BusFaults servo_faults, gripper_faults;
-  std::string line;
-  char buf[512];
-  bool input_open = true;
-  while (!g_stop) {
+  Devices devices{servos, ids, gripper, {}, {}};
+  // Commands are read with read() into a line buffer of our own, never
+  // through stdio: poll() says nothing of what stdio has already buffered,
+  // so with fgets a second command written in the same go as the first sat
+  // unread until more input came.
+  std::string pending;
+  bool input_open = true, quit = false;
+  while (!g_stop && !quit) {
     if (!input_open) {
       pause();  // stdin closed (a background service): run until a signal
       continue;
     }
     struct pollfd p = {0, POLLIN, 0};
     if (poll(&p, 1, 200) <= 0) continue;
-    if (!std::fgets(buf, sizeof(buf), stdin)) {
+    char buf[512];
+    const ssize_t n = ::read(0, buf, sizeof(buf));
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    if (n <= 0) {
       input_open = false;
+      // A last command without its newline still counts.
+      if (!pending.empty()) quit = run_command(pending, &devices);
+      pending.clear();
       continue;
     }
-    std::istringstream in(buf);
-    std::string device, what;
-    in >> device >> what;
-    bool ok = true;
-    if (device.empty()) continue;
-    if (device == "quit") break;
-    if (device == "help") {
-      usage(stdout);
-    } else if (device == "status") {
-      print_status(servos, ids, gripper);
-    } else if (device == "servo" && (what == "overload" || what == "overheat")) {
-      int id = -1;
-      std::string state;
-      in >> id >> state;
-      bool on = false;
-      ok = id >= 0 && parse_on_off(state, &on);
-      if (ok) {
-        sim_hal::SimServo s;
-        servos.servo(static_cast<std::uint8_t>(id), &s);
-        std::uint8_t bits = s.error_bits();
-        const std::uint8_t bit =
-            what == "overload" ? dynamixel::kErrorOverload : dynamixel::kErrorOverheating;
-        bits = on ? (bits | bit) : (bits & ~bit);
-        servos.force_error_bits(static_cast<std::uint8_t>(id), bits);
-      }
-    } else if (device == "servo" && what == "torque") {
-      int id = -1;
-      double nm = 0.0;
-      in >> id >> nm;
-      ok = id >= 0;
-      if (ok) servos.set_external_torque(static_cast<std::uint8_t>(id), nm);
-    } else if (device == "servo") {
-      ok = apply_line_fault(in, what, &servo_faults);
-      if (ok) servos.set_faults(servo_faults);
-    } else if (device == "gripper" && what == "handrail") {
-      std::string value;
-      in >> value;
-      gripper.set_handrail_raw(value == "off" ? -1 : std::atoi(value.c_str()));
-    } else if (device == "gripper") {
-      ok = apply_line_fault(in, what, &gripper_faults);
-      if (ok) gripper.set_faults(gripper_faults);
-    } else {
-      ok = false;
+    pending.append(buf, static_cast<std::size_t>(n));
+    // Every whole line of what came, in order.
+    std::size_t eol;
+    while (!quit && (eol = pending.find('\n')) != std::string::npos) {
+      const std::string line = pending.substr(0, eol);
+      pending.erase(0, eol + 1);
+      quit = run_command(line, &devices);
     }
-    std::printf("%s\n", ok ? "ok" : "? not understood (type help)");
-    std::fflush(stdout);
+    // A line longer than any command: dropped rather than grown forever.
+    if (pending.size() > 4096) pending.clear();
   }
   servos.stop();
   gripper.stop();

@@ -45,9 +45,10 @@ bool Bus::replies_to(Instruction instruction, std::uint8_t id) const {
 }
 
 BusResult Bus::wait_reply(std::uint8_t id, std::size_t expect_params, std::int64_t deadline_us,
-                          StatusPacket* reply) {
+                          StatusPacket* reply, bool* unanswered) {
   BusResult result;
   result.status = BusStatus::kTimeout;
+  *unanswered = true;
   std::uint8_t rx[kMaxPacket];
   parser_.reset();
   // Bounded by the deadline; each pass takes what has arrived.
@@ -72,19 +73,29 @@ BusResult Bus::wait_reply(std::uint8_t id, std::size_t expect_params, std::int64
         case ParseEvent::kBadChecksum:
           ++counters_.bad_checksums;
           result.status = BusStatus::kBadChecksum;
+          *unanswered = false;  // most likely this attempt's reply, damaged
           break;
         case ParseEvent::kPacket: {
           const StatusPacket& p = parser_.packet();
-          if (p.id != id || p.n_params != expect_params) {
-            // Another servo's late reply, or a stray packet: not ours.
-            ++counters_.wrong_replies;
-            result.status = BusStatus::kWrongReply;
-            break;
+          if (p.id == id && p.n_params == expect_params) {
+            *reply = p;
+            result.status = BusStatus::kOk;
+            result.servo_error = p.error;
+            *unanswered = false;
+            return result;
           }
-          *reply = p;
-          result.status = BusStatus::kOk;
-          result.servo_error = p.error;
-          return result;
+          ++counters_.wrong_replies;
+          result.status = BusStatus::kWrongReply;
+          // A servo refuses a READ it cannot carry out with its error bits
+          // and no data. Kept (not taken as data), and the wait goes on: it
+          // may also be a stale refusal, with the real reply still to come.
+          constexpr std::uint8_t kRefusal = kErrorChecksum | kErrorInstruction | kErrorRange;
+          if (p.id == id && p.n_params == 0 && (p.error & kRefusal)) {
+            result.servo_error = p.error;
+            *unanswered = false;
+          }
+          // Otherwise another servo's late reply, or a stray packet: not ours.
+          break;
         }
       }
     }
@@ -106,6 +117,30 @@ void Bus::drain_until(std::int64_t deadline_us) {
   }
 }
 
+void Bus::count_stale(const std::uint8_t* bytes, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) {
+    if (stale_parser_.push(bytes[k]) == ParseEvent::kPacket) ++counters_.stale_replies;
+  }
+}
+
+void Bus::discard_stale() {
+  std::uint8_t rx[kMaxPacket];
+  stale_parser_.reset();
+  // Bounded: a pass either takes bytes or ends the loop; a device that
+  // never stops talking is cut off after 64 reads.
+  for (int pass = 0; pass < 64; ++pass) {
+    const std::int64_t left = quiet_until_us_ - clock_.now_us();
+    std::size_t n = 0;
+    const hal::SerialStatus s = port_.read(rx, sizeof(rx), 1, &n, left > 0 ? left : 0);
+    count_stale(rx, n);
+    // Nothing more before the quiet time ends (or nothing now); a port
+    // failure shows again on the write that follows.
+    if (s != hal::SerialStatus::kOk) break;
+  }
+  // Whatever came in since the last read, and a partial packet's rest.
+  port_.flush_input();
+}
+
 BusResult Bus::transact(std::uint8_t id, Instruction instruction, const std::uint8_t* params,
                         std::size_t n_params, bool expect_reply, std::size_t expect_params,
                         StatusPacket* reply) {
@@ -117,12 +152,16 @@ BusResult Bus::transact(std::uint8_t id, Instruction instruction, const std::uin
   }
   ++counters_.transactions;
   const std::size_t reply_bytes = expect_reply ? expect_params + 6 : 0;
+  const std::int64_t timeout_us = reply_timeout_us(n, reply_bytes);
+  bool reply_outstanding = false;
+  std::int64_t last_start_us = 0;
   for (unsigned attempt = 0; attempt <= config_.retries; ++attempt) {
     if (attempt > 0) ++counters_.retries;
-    // Stale bytes (a late reply to an earlier attempt) must not be taken
-    // for this one's.
-    port_.flush_input();
+    // Stale bytes (a late reply to an earlier instruction) must not be
+    // taken for this one's.
+    discard_stale();
     const std::int64_t start = clock_.now_us();
+    last_start_us = start;
     const hal::SerialStatus ws = port_.write(tx_, n, reply_timeout_us(n, 0));
     if (ws != hal::SerialStatus::kOk) {
       result.status = BusStatus::kSerialError;
@@ -131,20 +170,32 @@ BusResult Bus::transact(std::uint8_t id, Instruction instruction, const std::uin
       // echo: let this attempt's own reply come and go, then try again.
       // Anything else is the port's failure.
       if (ws == hal::SerialStatus::kEchoMismatch) {
-        drain_until(start + reply_timeout_us(n, reply_bytes));
+        drain_until(start + timeout_us);
         continue;
       }
-      return result;
+      break;
     }
-    if (!expect_reply) return result;
+    if (!expect_reply) break;
     StatusPacket local;
-    result = wait_reply(id, expect_params, start + reply_timeout_us(n, reply_bytes), &local);
+    bool unanswered = true;
+    result = wait_reply(id, expect_params, start + timeout_us, &local, &unanswered);
+    reply_outstanding = reply_outstanding || unanswered;
+    if (result.servo_error & kErrorChecksum) {
+      // The servo received a damaged instruction and did nothing: as good
+      // as lost on the way, so tried again.
+      ++counters_.instruction_checksum_errors;
+      continue;
+    }
     if (result.status == BusStatus::kOk) {
       if (reply) *reply = local;
-      return result;
+      break;
     }
-    if (result.status == BusStatus::kSerialError) return result;
+    if (result.status == BusStatus::kSerialError) break;
   }
+  // An attempt went unanswered: its reply may yet come. The next
+  // instruction waits until twice the reply timeout has passed since the
+  // last attempt went out, and discards what arrives meanwhile.
+  if (reply_outstanding) quiet_until_us_ = last_start_us + 2 * timeout_us;
   return result;
 }
 

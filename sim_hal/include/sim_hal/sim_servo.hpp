@@ -28,11 +28,27 @@ class SimServo {
   // Factory defaults (the ID is kept, as RESET of a real servo gives ID 1
   // only when asked; the simulator keeps buses stable).
   void reset_table();
+  // Power off and on: the RAM area (24..49) back to its power-up values,
+  // Lock cleared, a REG_WRITE forgotten; the EEPROM area kept.
+  void power_cycle();
 
   // Handles one instruction addressed to this servo (or broadcast). Returns
   // true when a status packet is due, with its error byte and parameters.
   bool handle(const dynamixel::InstructionPacket& packet, std::uint8_t* error, std::uint8_t* params,
               std::size_t* n_params);
+  // An instruction packet that arrived with a wrong checksum (its ID and
+  // instruction as received): not carried out, but answered, as the AX-12A
+  // does, with the checksum error bit and no parameters. Returns true when
+  // that status packet is due (never for broadcast; the status return level
+  // applies to the instruction as received).
+  bool handle_bad_checksum(const dynamixel::InstructionPacket& packet, std::uint8_t* error);
+
+  // The line rate it listens at: Baud Rate (4), bps = 2,000,000 / (value + 1).
+  std::uint32_t baud_bps() const { return 2000000u / (table_[4] + 1u); }
+  // Whether a host's rate is near enough to be understood: a UART tolerates
+  // up to 3 % (the e-manual's note on the rates it lists, e.g. value 16,
+  // 117,647 bps, for a host at 115,200).
+  bool understands_baud(std::uint32_t host_bps) const;
 
   // Advances the motion model by dt with an external torque on the output
   // (N m, positive counter-clockwise).
@@ -56,6 +72,11 @@ class SimServo {
   // Applies a write of n bytes at address; returns the error bits it raises.
   std::uint8_t apply_write(std::uint8_t address, const std::uint8_t* data, std::size_t n);
   void set16(std::uint8_t address, std::uint16_t value);
+  // The RAM area's values at power-up (torque limit from Max Torque, goal
+  // where the shaft is).
+  void init_ram();
+  // Whether the status return level (16) answers this instruction.
+  bool answers(std::uint8_t instruction) const;
   void alarm_shutdown_if_needed();
 
   ServoPhysics physics_;

@@ -3,6 +3,11 @@
 // Dynamixel bus: a thread reads instruction packets from the pty, lets the
 // addressed servo answer after its return delay, and moves the servos in
 // real time. Faults can be switched on and off while it runs.
+//
+// A pty carries no signal, but it keeps the rate its client set (termios;
+// read back on the master). A servo hears a packet only when that rate is
+// within 3 % of its own Baud Rate (4), as a UART would; at any other rate
+// it stays silent, so a scan finds each servo at its own rate only.
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -35,6 +40,11 @@ class SimServoBus {
   void set_external_torque(std::uint8_t id, double torque_nm);
   // Places a servo's shaft (and goal) at an angle, e.g. the arm stowed.
   void set_position(std::uint8_t id, double angle_rad);
+  // Switches a servo off and on (SimServo::power_cycle): the only way to
+  // clear its Lock.
+  void power_cycle(std::uint8_t id);
+  // The rate the pty's client has set (its output speed), 0 when unknown.
+  std::uint32_t line_baud() const;
   // A copy of a servo's state, for tests and monitors.
   bool servo(std::uint8_t id, SimServo* out) const;
   std::uint64_t packets_handled() const { return packets_.load(); }

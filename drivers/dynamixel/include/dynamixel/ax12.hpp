@@ -9,7 +9,9 @@
 namespace dynamixel {
 namespace ax12 {
 
-// Control-table addresses (EEPROM below 24: writable only with torque off).
+// Control-table addresses: EEPROM below 24, RAM from 24. Lock (47) set to 1
+// leaves only 24..35 writable, until the servo's power is cycled (the AX-12
+// manual's example 20; the refusal carries kErrorRange).
 enum Address : std::uint8_t {
   kModelNumber = 0,  // 2 bytes; 12 for the AX-12A
   kFirmwareVersion = 2,

@@ -3,6 +3,19 @@
 // one status packet back, with timeouts worked out from the baud rate and
 // the servos' return delay, and a bounded number of retries. No allocation
 // and no exceptions: every call returns a status and the servo's error bits.
+//
+// Protocol 1.0 status packets carry no transaction number, so a reply that
+// comes after its timeout looks like the answer to the next instruction
+// (the maker's SDK takes it so). The bus keeps them apart three ways:
+//  - a reply counts only with the ID asked and the parameter count the
+//    instruction implies (a READ of N bytes: N parameters; others: none);
+//  - before each instruction goes out, whatever has arrived is read,
+//    parsed and discarded (counted as stale_replies);
+//  - after a transaction in which an attempt timed out, the next
+//    instruction is held back until twice that attempt's reply timeout has
+//    passed since it was sent, so that its late reply lands in the discard
+//    and not in the next transaction's window. A reply later than that is
+//    indistinguishable from a real one on this protocol.
 #include <cstddef>
 #include <cstdint>
 
@@ -16,7 +29,8 @@ enum class BusStatus : std::uint8_t {
   kOk,               // a valid reply (which may still carry servo error bits)
   kTimeout,          // no reply in time, after every retry
   kBadChecksum,      // only corrupt replies, after every retry
-  kWrongReply,       // a reply from another ID, or of the wrong length
+  kWrongReply,       // only replies from another ID or of the wrong length; a servo's
+                     // refusal of a READ (no data, its error bits in servo_error) too
   kSerialError,      // the port failed (see serial_status)
   kInvalidArgument,  // an ID, address or length that cannot be sent
 };
@@ -41,6 +55,12 @@ struct BusConfig {
 struct BusCounters {
   std::uint32_t transactions = 0, retries = 0, timeouts = 0, bad_checksums = 0, wrong_replies = 0,
                 bad_lengths = 0;
+  // Whole status packets found on the line before an instruction was sent
+  // (late replies to earlier ones), discarded.
+  std::uint32_t stale_replies = 0;
+  // Replies whose checksum-error bit said the servo received a damaged
+  // instruction (and so did nothing): retried like a lost reply.
+  std::uint32_t instruction_checksum_errors = 0;
 };
 
 class Bus {
@@ -85,17 +105,26 @@ class Bus {
   // WRITE and REG_WRITE: the address, then the data.
   BusResult write_at(Instruction instruction, std::uint8_t id, std::uint8_t address,
                      const std::uint8_t* data, std::uint8_t length);
+  // *unanswered: nothing came that could be this attempt's reply (its
+  // reply may still be on its way).
   BusResult wait_reply(std::uint8_t id, std::size_t expect_params, std::int64_t deadline_us,
-                       StatusPacket* reply);
+                       StatusPacket* reply, bool* unanswered);
   bool replies_to(Instruction instruction, std::uint8_t id) const;
   // Reads and discards until the deadline.
   void drain_until(std::int64_t deadline_us);
+  // Before an instruction: waits out the quiet time a timeout left, then
+  // reads what has arrived; whole packets in it count as stale replies.
+  void discard_stale();
+  void count_stale(const std::uint8_t* bytes, std::size_t n);
 
   hal::SerialPort& port_;
   const hal::Clock& clock_;
   BusConfig config_;
   BusCounters counters_;
   StatusParser parser_;
+  StatusParser stale_parser_;  // kept apart so a stale fragment cannot start a reply
+  // No instruction goes out before this time (after a timeout; see above).
+  std::int64_t quiet_until_us_ = 0;
   std::uint8_t tx_[kMaxPacket];
   std::uint8_t params_[kMaxParams];
 };

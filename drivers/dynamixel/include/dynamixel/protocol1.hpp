@@ -54,7 +54,8 @@ struct StatusPacket {
 enum class ParseEvent : std::uint8_t {
   kNone,         // need more bytes
   kPacket,       // a whole, valid status packet is ready
-  kBadChecksum,  // a packet arrived with a wrong checksum; dropped
+  kBadChecksum,  // a packet arrived with a wrong checksum; dropped, though packet()
+                 // still shows its ID and code (a servo answers it with kErrorChecksum)
   kBadLength,    // a length byte that cannot be; resynchronising
 };
 const char* to_string(ParseEvent event);
