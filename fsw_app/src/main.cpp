@@ -216,7 +216,23 @@ int main(int argc, char** argv) {
   if (!opt.gripper_port.empty()) cfg.ports.gripper_port = opt.gripper_port;
   const hal::UseCase* use_case = hal::find_use_case(cfg.use_case);
 
-  fsw_app::LcmHub hub(cfg.lcm_url);
+  auto hub_owner = std::make_unique<fsw_app::LcmHub>(cfg.lcm_url);
+  if (!hub_owner->good() && opt.hal == "sim" && opt.tasks == fsw_app::kAllTasks &&
+      opt.lcm_url.empty()) {
+    // A hardware-in-loop run with every task in this process needs no
+    // network: on a machine without a multicast route (a container, no
+    // default route) it runs in-process rather than not at all. Never on
+    // the robot (--hal real), and never when the URL was asked for.
+    std::fprintf(stderr,
+                 "fsw_app: LCM would not start on %s (no multicast route?); every task of this "
+                 "run is in this process, so it runs on memq:// instead. To watch it with "
+                 "lcm-spy, add the route: sudo ip link set lo multicast on; sudo ip route add "
+                 "224.0.0.0/4 dev lo\n",
+                 cfg.lcm_url.c_str());
+    cfg.lcm_url = "memq://";
+    hub_owner = std::make_unique<fsw_app::LcmHub>(cfg.lcm_url);
+  }
+  fsw_app::LcmHub& hub = *hub_owner;
   if (!hub.good()) {
     std::fprintf(stderr,
                  "fsw_app: LCM would not start on %s. For udpm on one host add the multicast "
