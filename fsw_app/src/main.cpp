@@ -26,6 +26,7 @@
 #include "arm_io/ax12_joints.hpp"
 #include "arm_io/gripper_actuator.hpp"
 #include "dynamixel/bus.hpp"
+#include "frame_receive_buffer.hpp"
 #include "fsw_app/app_config.hpp"
 #include "fsw_app/arm_task.hpp"
 #include "fsw_app/camera_task.hpp"
@@ -42,6 +43,7 @@
 #include "hal/use_case.hpp"
 #include "replay_camera/pcd_replay_camera.hpp"
 #include "run_log.hpp"
+#include "run_signals.hpp"
 #include "run_summary.hpp"
 #ifdef HRP_WITH_SIM
 #include "hil_world.hpp"
@@ -51,24 +53,6 @@
 namespace {
 
 using fsw_app::Options;
-
-// SIGINT and SIGTERM are handled from the first line of main. Before the
-// tasks start (options, configuration, scenario, devices) nothing has
-// moved, so a signal ends the program at once; a configuration that takes
-// long to read cannot hold it up. Once the tasks run, a signal asks the run
-// loop for a safe stop (during a perch: the perch sequence's own ABORT,
-// then the arm at rest); a second one ends the program at once.
-volatile sig_atomic_t g_stop = 0;  // the signal number, 0 while none came
-volatile sig_atomic_t g_tasks_running = 0;
-void on_signal(int sig) {
-  if (!g_tasks_running || g_stop) {
-    static const char kMessage[] = "fsw_app: stopped by a signal, at once\n";
-    const ssize_t ignored = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
-    (void)ignored;
-    _exit(128 + sig);
-  }
-  g_stop = sig;
-}
 
 // The arm states in which nothing moves: where a safe stop may end.
 bool arm_at_rest(std::int8_t state) {
@@ -80,14 +64,6 @@ constexpr std::int32_t kStopSequence = 2;
 // How long a safe stop may take: an ABORT during the approach opens, backs
 // off and stows (about 10 s in the simulator).
 constexpr double kSafeStopLimit_s = 30.0;
-
-void install_signal_handlers() {
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
 
 // The arm task's links: the two serial ports and the drivers on them.
 struct ArmLinks {
@@ -143,33 +119,6 @@ bool open_arm_links(const fsw_app::AppConfig& cfg, const std::string& servo_port
 // kernel's default receive buffer (about 200 kB) most frames lose one. An
 // estimator fed over udpm asks LCM for a 4 MB buffer unless the URL names
 // one, and says so when the kernel will not grant that much.
-// A process that hears depth frames over udpm (an estimator fed from
-// another process, or a log that records this process's own frames) needs
-// a socket receive buffer of several frames: with the kernel's default of
-// about 200 kB, 8 of 89 frames reached the log. Adds recv_buf_size to the
-// URL. False, with *error saying what to set, when the kernel's limit is
-// below it.
-bool with_frame_receive_buffer(std::string* url, std::string* error) {
-  constexpr long kWantedBytes = 4L << 20;
-  if (url->rfind("udpm://", 0) != 0 || url->find("recv_buf_size=") != std::string::npos) {
-    return true;
-  }
-  long rmem_max = -1;
-  if (std::FILE* f = std::fopen("/proc/sys/net/core/rmem_max", "r")) {
-    if (std::fscanf(f, "%ld", &rmem_max) != 1) rmem_max = -1;
-    std::fclose(f);
-  }
-  *url += (url->find('?') == std::string::npos ? "?" : "&") + std::string("recv_buf_size=") +
-          std::to_string(kWantedBytes);
-  if (rmem_max >= 0 && rmem_max < kWantedBytes) {
-    *error = "depth frames over udpm want a 4 MB receive buffer but the kernel allows " +
-             std::to_string(rmem_max) + " bytes, so frames would be lost: sudo sysctl -w " +
-             "net.core.rmem_max=" + std::to_string(kWantedBytes);
-    return false;
-  }
-  return true;
-}
-
 const char* state_name(std::int8_t s) {
   return arm::to_string(static_cast<arm::PerchState>(s));
 }
@@ -177,7 +126,7 @@ const char* state_name(std::int8_t s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  install_signal_handlers();
+  run_signals::install();
   Options opt;
   if (auto rc = fsw_app::parse_options(argc, argv, &opt)) return *rc;
 
@@ -195,7 +144,7 @@ int main(int argc, char** argv) {
                                       !opt.runs(fsw_app::kCameraTask) &&
                                       opt.frames_from_log.empty();
   if (estimator_fed_over_lcm || (!opt.log.empty() && sends_frames)) {
-    if (!with_frame_receive_buffer(&cfg.lcm_url, &error)) {
+    if (!fsw_app::with_frame_receive_buffer(&cfg.lcm_url, &error)) {
       if (!opt.log.empty() && sends_frames) {
         // Recording frames that would be lost is refused outright.
         std::fprintf(stderr,
@@ -402,7 +351,7 @@ int main(int argc, char** argv) {
   // Every subscription is made by now: the channel list is fixed.
   fsw_app::InputHealthReporter input_health(hub, fsw_app::task_names(opt.tasks));
 
-  g_tasks_running = 1;
+  run_signals::mark_tasks_running();
   hub.start();
   if (estimator_task) estimator_task->start();
   if (arm_task) arm_task->start();
@@ -455,7 +404,7 @@ int main(int argc, char** argv) {
     }
     const bool have_arm = arm_box.read(&arm) != 0;
     approach_box.read(&approach);
-    if (g_stop && !stopping) {
+    if (run_signals::stop_signal() && !stopping) {
       // Only a perch has something to stop safely; any other run ends here.
       if (!opt.perch || !commanded) break;
       stopping = true;
@@ -468,14 +417,14 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "%sfsw_app: %s at %.1f s (arm %s): ABORT sent, waiting for the arm to come to "
                    "rest; a second signal ends the program at once\n",
-                   tty ? "\n" : "", fsw_app::signal_name(g_stop), t,
+                   tty ? "\n" : "", fsw_app::signal_name(run_signals::stop_signal()), t,
                    have_arm ? state_name(arm.state) : "-");
     }
     if (stopping) {
       const bool acknowledged = arm.last_command_sequence == kStopSequence;
       if ((acknowledged && arm_at_rest(arm.state)) || t - stop_s > kSafeStopLimit_s) {
         summary_stop.stopped = true;
-        summary_stop.signal = g_stop;
+        summary_stop.signal = run_signals::stop_signal();
         summary_stop.at_rest = acknowledged && arm_at_rest(arm.state);
         summary_stop.after_s = t - stop_s;
         done = true;
@@ -584,9 +533,9 @@ int main(int argc, char** argv) {
 #endif
   if (player) summary.replay = player->counts();
   summary.stop = summary_stop;
-  if (g_stop && !summary_stop.stopped) {
+  if (run_signals::stop_signal() && !summary_stop.stopped) {
     summary.stop.stopped = true;  // a run without a perch to stop safely
-    summary.stop.signal = g_stop;
+    summary.stop.signal = run_signals::stop_signal();
     summary.stop.at_rest = true;
   }
   summary.perched = perched;

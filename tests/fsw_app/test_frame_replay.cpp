@@ -29,22 +29,14 @@
 #include "fsw_app/depth_frame_msg.hpp"
 #include "fsw_app/frame_publisher.hpp"
 #include "fsw_app/lcm_depth_camera.hpp"
+#include "fsw_app_runs.hpp"
 #include "hrp/handrail_estimate_t.hpp"
 #include "summary_json.hpp"
 #include "test_data.hpp"
 
 namespace {
 
-std::string g_program;
-
-std::string source(const std::string& rel) {
-  const char* d = std::getenv("HRP_SOURCE_DIR");
-  return std::string(d ? d : ".") + "/" + rel;
-}
-
-std::string work_path(const std::string& name) {
-  return "/tmp/hrp_replay_" + std::to_string(getpid()) + "_" + name;
-}
+using namespace fsw_app_runs;
 
 formats::PcdFrame load_frame(const char* name) {
   formats::PcdFrame f;
@@ -194,167 +186,6 @@ void test_frames_cross_lcm_and_bad_messages_are_counted(void**) {
   assert_int_equal(far_task.received(), 2);
 }
 
-// --- The program.
-
-struct Run {
-  int exit_status = -1;
-  std::string output;  // stdout and stderr
-  testing_support::Summary summary;
-  double number(const char* key) const { return summary.number(key); }
-};
-
-// Waits for it; its output, exit status and (when named) JSON summary.
-Run finish_program(pid_t pid, const std::string& out_path, const std::string& summary = "") {
-  Run r;
-  r.exit_status = testing_support::wait_for_exit(pid);
-  r.output = testing_support::read_text(out_path);
-  std::remove(out_path.c_str());
-  if (!summary.empty()) {
-    std::string error;
-    if (!testing_support::read_summary(summary, &r.summary, &error)) {
-      print_error("no summary (%s): %s\n%s\n", summary.c_str(), error.c_str(), r.output.c_str());
-      fail();
-    }
-    std::remove(summary.c_str());
-  }
-  return r;
-}
-
-Run run_program(const std::string& program, std::vector<std::string> args,
-                const std::string& summary = "") {
-  const std::string out_path = work_path("out.txt");
-  if (!summary.empty()) std::remove(summary.c_str());
-  return finish_program(testing_support::spawn_program(program, std::move(args), out_path),
-                        out_path, summary);
-}
-
-// fsw_app's arguments: the shipped configuration, quiet, and the summary.
-// The budget is 10 s: the recorded and replayed estimates are compared
-// exactly, and on a loaded machine (a sanitizer build) a stall could make
-// a frame miss the 200 ms budget in one run and not in the other.
-std::vector<std::string> fsw_app_args(const std::vector<std::string>& args,
-                                      const std::string& summary) {
-  std::vector<std::string> all = {"--config", source("fsw_app/config/fsw_app.json"), "--quiet",
-                                  "--budget-us", "10000000"};
-  all.insert(all.end(), args.begin(), args.end());
-  if (!summary.empty()) {
-    all.push_back("--summary-json");
-    all.push_back(summary);
-  }
-  return all;
-}
-
-Run run_fsw_app(const std::vector<std::string>& args, const std::string& summary = "") {
-  return run_program(g_program, fsw_app_args(args, summary), summary);
-}
-
-struct Estimate {
-  int state = -1;
-  double p[3] = {0, 0, 0};
-  double q[4] = {0, 0, 0, 0};
-};
-
-// HANDRAIL_ESTIMATE by frame id (the first for each frame), and the count
-// of DEPTH_FRAME events.
-std::map<std::int64_t, Estimate> read_estimates(const std::string& path, int* depth_frames) {
-  std::map<std::int64_t, Estimate> out;
-  lcm::LogFile log(path, "r");
-  assert_true(log.good());
-  *depth_frames = 0;
-  while (const lcm::LogEvent* e = log.readNextEvent()) {
-    if (e->channel == "DEPTH_FRAME") ++*depth_frames;
-    if (e->channel != "HANDRAIL_ESTIMATE") continue;
-    hrp::handrail_estimate_t m{};  // zeroed: GCC 12 at -O2 cannot see decode() fills it
-    assert_true(m.decode(e->data, 0, e->datalen) > 0);
-    if (out.count(m.frame_id)) continue;
-    Estimate est;
-    est.state = m.state;
-    for (int k = 0; k < 3; ++k) est.p[k] = m.T_cam_handrail.position_m[k];
-    for (int k = 0; k < 4; ++k) est.q[k] = m.T_cam_handrail.quat_wxyz[k];
-    out[m.frame_id] = est;
-  }
-  return out;
-}
-
-// Every frame estimated in both runs agrees exactly (same frames, same
-// detector); returns how many were compared.
-int compare_estimates(const std::map<std::int64_t, Estimate>& a,
-                      const std::map<std::int64_t, Estimate>& b) {
-  int compared = 0;
-  for (const auto& [id, ea] : a) {
-    const auto it = b.find(id);
-    if (it == b.end()) continue;
-    const Estimate& eb = it->second;
-    if (ea.state != eb.state) {
-      print_error("frame %lld: state %d recorded, %d replayed\n", static_cast<long long>(id),
-                  ea.state, eb.state);
-      fail();
-    }
-    for (int k = 0; k < 3; ++k) assert_true(std::fabs(ea.p[k] - eb.p[k]) < 1e-9);
-    for (int k = 0; k < 4; ++k) assert_true(std::fabs(ea.q[k] - eb.q[k]) < 1e-9);
-    ++compared;
-  }
-  return compared;
-}
-
-// Records a run on the recorded PCD frames (5 fps) with --publish-frames.
-std::string record_run() {
-  const std::string rec = work_path("rec.lcm");
-  const Run r = run_fsw_app(
-      {"--hal", "real", "--camera-replay", source("tests/data"), "--tasks", "camera,estimator",
-       "--publish-frames", "--duration", "2.5", "--lcm-url", "memq://", "--log", rec},
-      work_path("rec.json"));
-  assert_int_equal(r.exit_status, 0);
-  assert_true(r.number("frames_processed") >= 8);
-  return rec;
-}
-
-// Every good frame played reached the estimator, and each was estimated or,
-// when a stall bunched frames together and the estimator was behind,
-// dropped as designed (the oldest first). Most must have been estimated.
-void assert_frames_accounted_for(const Run& r, int good_frames) {
-  const auto received = static_cast<int>(r.number("frames_received"));
-  const auto processed = static_cast<int>(r.number("frames_processed"));
-  const auto dropped = static_cast<int>(r.number("frames_dropped"));
-  std::printf("%d good frames played: %d received, %d processed, %d dropped\n", good_frames,
-              received, processed, dropped);
-  assert_int_equal(received, good_frames);
-  assert_int_equal(processed + dropped, received);
-  assert_true(processed * 3 >= good_frames * 2);
-}
-
-struct Replay {
-  Run run;
-  std::map<std::int64_t, Estimate> estimates;
-};
-
-// Replays `log` into an estimator running alone (memq) and reads back what
-// it estimated.
-Replay replay_into_estimator(const std::string& log, const std::string& name) {
-  const std::string replay_log = work_path(name + ".lcm");
-  Replay out;
-  out.run = run_fsw_app({"--frames-from-log", log, "--lcm-url", "memq://", "--log", replay_log},
-                        work_path(name + ".json"));
-  std::printf("%s", out.run.output.c_str());
-  assert_int_equal(out.run.exit_status, 0);
-  int depth_frames = 0;
-  out.estimates = read_estimates(replay_log, &depth_frames);
-  std::remove(replay_log.c_str());
-  return out;
-}
-
-// Each frame processed in the replay published one estimate; those of
-// frames estimated in both runs agree exactly, and they are most frames
-// (either run may have dropped a few when a stall left it behind).
-void assert_estimates_agree(const std::map<std::int64_t, Estimate>& recorded, const Replay& replay,
-                            int good_frames) {
-  const int compared = compare_estimates(recorded, replay.estimates);
-  std::printf("%d good frames; %d estimates compared, all equal\n", good_frames, compared);
-  assert_int_equal(static_cast<long>(replay.estimates.size()),
-                   static_cast<long>(replay.run.number("frames_processed")));
-  assert_true(compared * 2 >= good_frames);
-}
-
 void test_recorded_run_replays_into_the_estimator_alone(void**) {
   const std::string rec = record_run();
   const Replay replay = replay_into_estimator(rec, "rep");
@@ -419,141 +250,6 @@ void test_damaged_log_replays_the_rest(void**) {
   assert_true(replayed.count(4) == 0);  // frame ids count from 0: the fifth frame
   std::remove(damaged.c_str());
   std::remove(rec.c_str());
-}
-
-// An event whose header claims 0x7ffffff0 bytes (found from outside: the
-// replay stopped there with no word of damage): LCM's reader takes the rest
-// of the file for it and reports the end. The player counts the damage,
-// goes back past that event's start, and plays every frame after it.
-void test_event_claiming_too_much_is_damage_not_the_end(void**) {
-  const std::string rec = record_run();
-  const std::string damaged = work_path("claims_too_much.lcm");
-  {
-    lcm::LogFile in(rec, "r");
-    lcm::LogFile out(damaged, "w");
-    assert_true(in.good() && out.good());
-    int frames = 0;
-    while (const lcm::LogEvent* e = in.readNextEvent()) {
-      lcm::LogEvent copy = *e;
-      assert_int_equal(out.writeEvent(&copy), 0);
-      if (e->channel == "DEPTH_FRAME" && ++frames == 4) {
-        // sync word, event number, timestamp, channel length, data length
-        // (all big-endian), channel: then far fewer bytes than claimed.
-        std::fflush(out.getFilePtr());
-        const std::uint8_t header[] = {0xED, 0xA1, 0xDA, 0x01, 0,    0,    0,    0,   0, 0,
-                                       0,    99,   0,    0,    0,    0,    0,    0,   0, 1,
-                                       0,    0,    0,    11,   0x7f, 0xff, 0xff, 0xf0};
-        std::fwrite(header, 1, sizeof header, out.getFilePtr());
-        std::fwrite("DEPTH_FRAME", 1, 11, out.getFilePtr());
-        std::fwrite("short", 1, 5, out.getFilePtr());
-      }
-    }
-  }
-  const Replay replay = replay_into_estimator(damaged, "rep_claims");
-  const Run& r = replay.run;
-  int rec_frames = 0;
-  const auto recorded = read_estimates(rec, &rec_frames);
-  assert_int_equal(r.number("replay_damaged"), 1);
-  assert_int_equal(r.number("replayed_frames"), rec_frames);
-  assert_true(r.output.find("damaged log") != std::string::npos);
-  assert_estimates_agree(recorded, replay, rec_frames - 1);
-  std::remove(damaged.c_str());
-  std::remove(rec.c_str());
-}
-
-// Recording a run's own frames over udpm (found from outside: 8 of 89
-// frames reached the log on the default URL, with no warning): the process
-// raises its receive buffer, and the summary says how many of the frames
-// it sent the log holds; where the kernel caps the buffer too low, the
-// recording refuses to start and says what to set.
-void test_recording_frames_over_udpm_loses_none(void**) {
-  const std::string url = "udpm://239.255.76.67:" + std::to_string(7500 + getpid() % 90) + "?ttl=0";
-  {
-    lcm::LCM probe(url);
-    if (!probe.good()) {
-      std::printf("NOTE: no multicast here (see fsw_app/README.md); not run\n");
-      return;
-    }
-  }
-  long rmem_max = -1;
-  if (std::FILE* f = std::fopen("/proc/sys/net/core/rmem_max", "r")) {
-    if (std::fscanf(f, "%ld", &rmem_max) != 1) rmem_max = -1;
-    std::fclose(f);
-  }
-  const std::string rec = work_path("rec_udpm.lcm");
-  const Run r = run_fsw_app(
-      {"--hal", "real", "--camera-replay", source("tests/data"), "--tasks", "camera,estimator",
-       "--publish-frames", "--duration", "2.5", "--lcm-url", url, "--log", rec},
-      rmem_max >= 0 && rmem_max < (4L << 20) ? "" : work_path("rec_udpm.json"));
-  if (rmem_max >= 0 && rmem_max < (4L << 20)) {
-    std::printf("  rmem_max %ld: the recording must refuse\n", rmem_max);
-    assert_int_equal(r.exit_status, 2);
-    assert_true(r.output.find("net.core.rmem_max=4194304") != std::string::npos);
-    return;
-  }
-  assert_int_equal(r.exit_status, 0);
-  const double published = r.number("frames_published");
-  const double logged = r.number("log_depth_frames");
-  std::printf("  udpm recording: %.0f of %.0f frames in the log\n", logged, published);
-  assert_true(published >= 8);
-  assert_true(logged == published);
-  int depth_frames = 0;
-  read_estimates(rec, &depth_frames);
-  assert_int_equal(depth_frames, static_cast<int>(published));
-  std::remove(rec.c_str());
-}
-
-// A log that cannot be written (found from outside: --log /dev/full
-// reported "374 messages" and exit 0) ends with the failure named in the
-// summary and exit status 3; the run itself is unharmed.
-void test_log_write_failure_is_reported(void**) {
-  const Run r = run_fsw_app(
-      {"--hal", "real", "--camera-replay", source("tests/data"), "--tasks", "camera,estimator",
-       "--publish-frames", "--duration", "1.5", "--lcm-url", "memq://", "--log", "/dev/full"},
-      work_path("full.json"));
-  assert_int_equal(r.exit_status, 3);
-  const std::string failure = r.summary.text("log_failure");
-  std::printf("  /dev/full: %s (%.0f written, %.0f lost)\n", failure.c_str(),
-              r.number("log_messages"), r.number("log_lost"));
-  assert_true(failure.find("No space left on device") != std::string::npos);
-  assert_true(r.number("log_lost") > 0);
-  assert_true(r.output.find("LCM log /dev/full") != std::string::npos);
-  assert_true(r.number("frames_processed") >= 4);
-}
-
-// A replay folder with a header claiming 8192 x 8192 points and a
-// truncated frame beside good ones (found from outside: 1.32 GB, both
-// skipped without a word, exit 0): both are named, nothing large is
-// allocated, the good frames play.
-void test_replay_folder_names_its_bad_files(void**) {
-  const std::string folder = work_path("frames_bad");
-  mkdir(folder.c_str(), 0755);
-  const std::string good = source("tests/data/table2-iss-1.pcd");
-  assert_int_equal(symlink(good.c_str(), (folder + "/a.pcd").c_str()), 0);
-  {
-    std::FILE* f = std::fopen((folder + "/huge.pcd").c_str(), "w");
-    std::fputs(
-        "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 8192\nHEIGHT "
-        "8192\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 67108864\nDATA binary\n",
-        f);
-    std::fclose(f);
-    const std::string bytes = testing_support::read_text(good);
-    f = std::fopen((folder + "/short.pcd").c_str(), "w");
-    std::fwrite(bytes.data(), 1, bytes.size() / 2, f);
-    std::fclose(f);
-  }
-  const Run r = run_fsw_app({"--hal", "real", "--camera-replay", folder, "--tasks",
-                             "camera,estimator", "--duration", "1", "--lcm-url", "memq://"},
-                            work_path("bad_frames.json"));
-  assert_int_equal(r.exit_status, 0);
-  assert_true(r.output.find("--camera-replay: 1 frames; skipped:") != std::string::npos);
-  assert_true(r.output.find("huge.pcd: WIDTH x HEIGHT 8192 x 8192") != std::string::npos);
-  assert_true(r.output.find("short.pcd:") != std::string::npos);
-  assert_true(r.number("frames_processed") >= 2);
-  for (const char* name : {"a.pcd", "huge.pcd", "short.pcd"}) {
-    std::remove((folder + "/" + name).c_str());
-  }
-  rmdir(folder.c_str());
 }
 
 void test_bad_replay_requests_are_refused_by_name(void**) {
@@ -644,10 +340,6 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_frames_cross_lcm_and_bad_messages_are_counted),
       cmocka_unit_test(test_recorded_run_replays_into_the_estimator_alone),
       cmocka_unit_test(test_damaged_log_replays_the_rest),
-      cmocka_unit_test(test_event_claiming_too_much_is_damage_not_the_end),
-      cmocka_unit_test(test_recording_frames_over_udpm_loses_none),
-      cmocka_unit_test(test_log_write_failure_is_reported),
-      cmocka_unit_test(test_replay_folder_names_its_bad_files),
       cmocka_unit_test(test_bad_replay_requests_are_refused_by_name),
       cmocka_unit_test(test_lcm_logplayer_feeds_an_estimator_process),
   };
