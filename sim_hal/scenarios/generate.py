@@ -106,9 +106,494 @@ def corner():
             "seed": 51, "frame_rate_hz": 5, "scene": scene,
             "poses": [{"label": "corner", "position": [0.8, -0.1, 0.0], "rpy_deg": [0, 0, -10], "to": {"position": [0.65, 0.0, 0.0], "rpy_deg": [0, 0, -20]}, "frames": 40}]}
 
-for s in (table2("round"), table2("iss"), table2("iss_mesh"), sweep(), approach("iss"), approach("round"),
-          approach("iss_mesh"), clutter_only(), two_perpendicular(), corner()):
+def write(s):
     with open(s["name"] + ".json", "w") as f:
         json.dump(s, f, indent=1)
         f.write("\n")
     print("wrote", s["name"] + ".json")
+
+for s in (table2("round"), table2("iss"), table2("iss_mesh"), sweep(), approach("iss"), approach("round"),
+          approach("iss_mesh"), clutter_only(), two_perpendicular(), corner()):
+    write(s)
+
+# ---------------------------------------------------------------------------
+# ISS rack walls (issue #17): scenes built from the station's facts, not from
+# what the detector finds easy.
+#
+# - Handrails stand on seat tracks: strips 2.6 cm wide, 1.3 cm proud of the
+#   rack face, along rack edges; the bar's centre line is 6.1 cm above the
+#   track, 7.4 cm above the face.
+# - Neighbouring rack faces differ in depth by 1 to 5 cm; about 2 cm beside a
+#   track there is often a gap between racks about 12 cm deep, or an opening
+#   that returns nothing; some handrails stand beside an empty bay 35 cm
+#   deep. A view shows two or three surfaces at different depths, none of
+#   them the track the handrail stands on.
+# - Lengths: 8.5 in (bar 0.20 m), 21.5 in (0.53 m), 30 in (0.76 m), 41.5 in
+#   (1.04 m) and the 1 m module rails (a box bar on legs).
+# - Clutter: cables 0.6 to 2.5 cm thick lying on the surface, bridging 2 to
+#   8 cm above it or running 6 to 16 cm beside a handrail, some handrail-like
+#   (1.5 to 2.5 cm thick, 2 to 8 cm off); boxes 5 to 20 cm proud and 10 to
+#   40 cm across.
+# Every layout is drawn from a seeded random.Random, so the files are the
+# same on every run.
+import random
+
+TRACK_W, TRACK_H, RAIL_OFFSET = 0.026, 0.013, 0.061
+MESHES = {  # file, bar length (measured from the mesh by sim_hal's measure_bar)
+    "8-5": ("../assets/handrails/handrail_8_5.dae", 0.202),
+    "21-5": ("../assets/handrails/handrail_21_5.dae", 0.531),
+    "30": ("../assets/handrails/handrail_30.dae", 0.762),
+    "41-5": ("../assets/handrails/handrail_41_5.dae", 1.040),
+}
+
+def r4(x):
+    return round(x, 4)
+
+def vec(v):
+    return [r4(c) for c in v]
+
+def add(a, b, k=1.0):
+    return [a[i] + k * b[i] for i in range(3)]
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+class Wall:
+    """A rack wall's frame as sim_hal builds it: v = up, u = v x normal."""
+    def __init__(self, center, normal, up):
+        self.c, self.n, self.v = center, normal, up
+        self.u = cross(up, normal)
+
+    def point(self, u, v, depth):
+        return add(add(add(self.c, self.u, u), self.v, v), self.n, depth)
+
+class RackLayout:
+    """A rack wall around one seat track, in the rail's own coordinates: a
+    along the track (the track's centre at a = 0), c across it (the track
+    from c = -0.013 to 0.013, the neighbouring rack at c > 0). `vertical`
+    runs the track along the wall's v (up), else along u; `side` mirrors c."""
+    def __init__(self, rng, rail_len, wall, vertical=False, bay=False, gap=None, extent=1.4):
+        self.rng, self.wall, self.vertical = rng, wall, vertical
+        self.side = rng.choice((-1, 1))
+        self.faces, self.tracks, self.gaps, self.bays, self.strips = [], [], [], [], []
+        u = rng.uniform
+        d_a = u(-0.02, 0.02)                        # rack A's frame, the track's base
+        self.base = d_a
+        edge = TRACK_W / 2 + u(0.015, 0.025)        # the track ~2 cm from rack A's edge
+        c_panel = -u(0.05, 0.15)                    # rack A's frame, then its inner panel
+        d_panel = d_a + rng.choice((-1, 1)) * u(0.01, 0.04)
+        gap_kind = gap or rng.choice(("recess", "recess", "opening", "opening", "none"))
+        g = 0.0 if gap_kind == "none" else u(0.02, 0.05)
+        d_b = d_a + rng.choice((-1, 1)) * u(0.01, 0.05)
+        # Along the track: rack A, then (past a narrow opening) racks C at
+        # their own depths, each with its own seat track.
+        a_lo, a_hi = -(rail_len / 2 + u(0.06, 0.35)), rail_len / 2 + u(0.06, 0.35)
+        refl = lambda: r4(u(0.45, 0.7))
+        self.face((a_lo, a_hi), (c_panel, edge), d_a, refl())
+        self.face((a_lo, a_hi), (-extent, c_panel), d_panel, refl())
+        self.track((a_lo + 0.01, a_hi - 0.01), d_a)
+        for lo, hi in ((-extent, a_lo - u(0.01, 0.03)), (a_hi + u(0.01, 0.03), extent)):
+            d_c = d_a + rng.choice((-1, 1)) * u(0.01, 0.05)
+            self.face((lo, hi), (-extent, edge), d_c, refl())
+            self.track((lo + 0.01, hi - 0.01), d_c)
+        if gap_kind == "recess":
+            self.gap((-extent, extent), (edge, edge + g), r4(-u(0.10, 0.14)))
+        elif gap_kind == "opening":
+            self.gap((-extent, extent), (edge, edge + g), None)
+        c_b = edge + g
+        if bay:
+            # An empty bay beside the handrail: a rack's worth of wall
+            # missing, 35 cm deep, racks B around it.
+            b_lo, b_hi, c_hi = -u(0.45, 0.6), u(0.45, 0.6), c_b + u(0.8, 1.0)
+            self.bay((b_lo, b_hi), (c_b, c_hi), d_a - 0.35, min(d_a, d_b))
+            self.face((-extent, b_lo), (c_b, extent), d_b, refl())
+            self.face((b_hi, extent), (c_b, extent), d_b, refl())
+            if c_hi < extent:
+                self.face((b_lo, b_hi), (c_hi, extent), d_b, refl())
+        else:
+            self.face((-extent, extent), (c_b, extent), d_b, refl())
+            # An edge strip along rack B's edge and a light on its face.
+            self.strip((-extent, extent), (c_b + 0.004, c_b + u(0.012, 0.02)), d_b, 0.004, 0.85)
+            a0 = u(-0.3, 0.2)
+            self.strip((a0, a0 + u(0.08, 0.16)), (c_b + u(0.06, 0.1), c_b + u(0.12, 0.16)), d_b, 0.002, 0.95)
+        # A label on rack A's panel.
+        a0 = u(-0.4, 0.3)
+        self.strip((a0, a0 + 0.07), (c_panel - 0.09, c_panel - 0.04), d_panel, 0.001, 0.9)
+        self.gap_kind, self.d = gap_kind, {"a": d_a, "panel": d_panel, "b": d_b}
+        self.edge, self.c_panel, self.c_b = edge, c_panel, c_b
+
+    # Rail coordinates to the wall's (u, v) rectangle.
+    def rect(self, a, c):
+        cs = sorted((self.side * c[0], self.side * c[1]))
+        if self.vertical:
+            return {"u": vec(cs), "v": vec(a)}
+        return {"u": vec(a), "v": vec(cs)}
+
+    def uv(self, a, c):
+        return (self.side * c, a) if self.vertical else (a, self.side * c)
+
+    def face(self, a, c, depth, refl):
+        f = self.rect(a, c)
+        f.update({"depth": r4(depth), "reflectivity": refl})
+        self.faces.append(f)
+
+    def track(self, a, depth):
+        self.tracks.append({"from": vec(self.uv(a[0], 0.0)), "to": vec(self.uv(a[1], 0.0)), "depth": r4(depth)})
+
+    def gap(self, a, c, depth):
+        g = self.rect(a, c)
+        if depth is not None:
+            g["depth"] = depth
+        self.gaps.append(g)
+
+    def bay(self, a, c, depth, rim):
+        b = self.rect(a, c)
+        b.update({"depth": r4(depth), "rim": r4(rim)})
+        self.bays.append(b)
+
+    def strip(self, a, c, depth, height, refl):
+        st = self.rect(a, c)
+        st.update({"depth": r4(depth), "height": height, "reflectivity": refl})
+        self.strips.append(st)
+
+    def surface_depth(self, a, c):
+        """The rack surface's depth at rail point (a, c), for clutter."""
+        if c < self.c_panel:
+            return self.d["panel"]
+        if c < self.edge:
+            return self.base + (TRACK_H if abs(c) < TRACK_W / 2 else 0.0)
+        return self.d["b"]
+
+    def json(self):
+        w = {"center": vec(self.wall.c), "normal": self.wall.n, "up": self.wall.v, "faces": self.faces,
+             "seat_tracks": self.tracks}
+        if self.gaps:
+            w["gaps"] = self.gaps
+        if self.bays:
+            w["bays"] = self.bays
+        w["strips"] = self.strips
+        return w
+
+    def world(self, a, c, height):
+        """World point at rail coordinates (a, c), `height` above the rack
+        surface there."""
+        u, v = self.uv(a, c)
+        return self.wall.point(u, v, self.surface_depth(a, c) + height)
+
+    def rail_axis(self):
+        return self.wall.v if self.vertical else self.wall.u
+
+    def foot(self):
+        """The handrail's footprint centre: on the track's top at a = 0."""
+        return vec(self.wall.point(0.0, 0.0, self.base + TRACK_H))
+
+def rack_rail(layout, kind, length=None, mesh=None):
+    r = {"kind": kind, "foot": layout.foot(), "normal": layout.wall.n, "axis": layout.rail_axis()}
+    if kind == "iss_mesh":
+        r["mesh"] = mesh
+    else:
+        r["length"] = length
+    return r
+
+WALL_X = Wall([0, 0, 0], [1, 0, 0], [0, 0, 1])  # u = +y, v = +z: cameras face -x
+
+RACK_RAILS = [  # name, kind, length or mesh, bar length
+    ("iss-mesh-8-5", "iss_mesh", MESHES["8-5"][0], MESHES["8-5"][1]),
+    ("iss-mesh-21-5", "iss_mesh", MESHES["21-5"][0], MESHES["21-5"][1]),
+    ("iss-mesh-30", "iss_mesh", MESHES["30"][0], MESHES["30"][1]),
+    ("iss-mesh-41-5", "iss_mesh", MESHES["41-5"][0], MESHES["41-5"][1]),
+    ("iss-0-20", "iss", 0.20, 0.20), ("iss-0-53", "iss", 0.53, 0.53), ("iss-0-76", "iss", 0.76, 0.76),
+    ("iss-1-04", "iss", 1.04, 1.04), ("module-rail", "module_rail", 1.0, 1.0)]
+
+def rail_for(layout, kind, what):
+    return rack_rail(layout, kind, mesh=what) if kind == "iss_mesh" else rack_rail(layout, kind, length=what)
+
+def rack_table2(index, name, kind, what, bar):
+    rng = random.Random(1700 + index)
+    lay = RackLayout(rng, bar + 0.02, WALL_X, bay=(index % 3 == 2))
+    scene = {"rack_walls": [lay.json()], "handrails": [rail_for(lay, kind, what)]}
+    x0 = lay.base + TRACK_H
+    poses = [{"label": "table2-%d" % tid, "position": [r4(x0 + 0.60), y / 100.0, z / 100.0],
+              "rpy_deg": [roll, pitch, yaw], "frames": 50} for tid, y, z, roll, pitch, yaw in TABLE2]
+    gaps = {"recess": "a gap %.0f cm deep" % (100 * -lay.gaps[0].get("depth", 0)) if lay.gaps else "",
+            "opening": "an opening that returns nothing", "none": "no gap"}[lay.gap_kind]
+    return {"name": "rack-table2-" + name,
+            "description": ("The paper's Table 2 (8 poses x 50 frames, camera 60 cm from the mount surface) on an ISS "
+                            "rack wall: a horizontal %s handrail (bar %.2f m) on a seat track along rack A's edge "
+                            "(frame %+.1f cm, panel %+.1f cm), %s beside it, then %s at %+.1f cm.") %
+                           (kind, bar, 100 * lay.d["a"], 100 * lay.d["panel"], gaps,
+                            "an empty bay 35 cm deep among racks" if lay.bays else "rack B", 100 * lay.d["b"]),
+            "seed": 1700 + index, "frame_rate_hz": 5, "gripper_angle_deg": 90, "scene": scene, "poses": poses}
+
+def pose_on(wall, point, distance, offset_u=0.0, offset_v=0.0, rpy=(0, 0, 0), up=None):
+    """A camera `distance` off the wall in front of `point` (moved along the
+    wall's u and v), facing the wall."""
+    p = add(add(add(point, wall.n, distance), wall.u, offset_u), wall.v, offset_v)
+    pose = {"position": vec(p), "facing": [-x for x in wall.n], "rpy_deg": list(rpy)}
+    pose["up"] = up or wall.v
+    return pose
+
+def approach_segments(wall, foot, along, vertical_in_image, label_prefix="approach"):
+    """Three approaches from 1.2 m to 0.3 m off the mount surface, 12 cm
+    along the rail from its centre: straight, tilted (pitch and yaw), and
+    rolled; 40 frames each."""
+    up = wall.v if (vertical_in_image == (along == wall.v)) else wall.u
+    off = [0.12 * x for x in along]
+    start = add(foot, off)
+    segs = []
+    for label, rpy0, rpy1 in (("straight", (0, 0, 0), (0, 0, 0)), ("tilt", (0, -15, 20), (0, 10, -10)),
+                              ("roll", (30, 5, 0), (-20, 0, 10))):
+        a = pose_on(wall, start, 1.2, rpy=rpy0, up=up)
+        b = pose_on(wall, start, 0.3, rpy=rpy1, up=up)
+        a["label"] = label_prefix + "-" + label
+        a["frames"] = 40
+        a["to"] = {"position": b["position"], "rpy_deg": b["rpy_deg"]}
+        segs.append(a)
+    return segs
+
+def rack_approach(index, name, kind, what, bar, wall, vertical_track, vertical_in_image, where):
+    rng = random.Random(1800 + index)
+    lay = RackLayout(rng, bar + 0.02, wall, vertical=vertical_track, bay=(index == 2))
+    scene = {"rack_walls": [lay.json()], "handrails": [rail_for(lay, kind, what)]}
+    along = lay.rail_axis()
+    poses = approach_segments(wall, lay.foot(), along, vertical_in_image)
+    return {"name": "rack-approach-" + name,
+            "description": ("Perching approaches on an ISS rack %s from 1.2 m to 0.3 m off the mount surface toward a "
+                            "%s handrail (bar %.2f m, %s in the image) on a seat track, 12 cm along it from its "
+                            "centre: straight, tilted, rolled (40 frames each); gap beside the track: %s%s.") %
+                           (where, kind, bar, "vertical" if vertical_in_image else "horizontal", lay.gap_kind,
+                            ", an empty bay beyond" if lay.bays else ""),
+            "seed": 1800 + index, "frame_rate_hz": 5, "gripper_angle_deg": 0 if vertical_in_image else 90,
+            "scene": scene, "poses": poses}
+
+def clutter_on(lay, rng, rail_len, with_rail_like=True):
+    """Clutter per the station's facts around the rail (rail coordinates)."""
+    u = rng.uniform
+    cables, boxes = [], []
+    side_c = rng.choice((-1, 1))
+    # Beside the handrail, 6 to 16 cm away, bridging 2 to 8 cm above the surface.
+    c = side_c * u(0.06, 0.16)
+    h = u(0.02, 0.08)
+    d = r4(u(0.006, 0.025))
+    cables.append({"points": [vec(lay.world(-0.7, c, d / 2)), vec(lay.world(-0.45, c, h)),
+                              vec(lay.world(0.45, c, h)), vec(lay.world(0.7, c, d / 2))], "diameter": d})
+    # Lying on the surface, across the view.
+    for _ in range(2):
+        c0, c1 = u(-0.35, -0.12), u(0.15, 0.4)
+        a0, a1 = u(-0.5, 0.5), u(-0.5, 0.5)
+        d = r4(u(0.006, 0.025))
+        cables.append({"points": [vec(lay.world(a0, c0, d / 2)), vec(lay.world(a1, c1, d / 2))], "diameter": d})
+    # Bridging 2 to 8 cm over the surface.
+    a0 = u(-0.4, 0.4)
+    h = u(0.02, 0.08)
+    d = r4(u(0.006, 0.02))
+    cables.append({"points": [vec(lay.world(a0, -0.4, d / 2)), vec(lay.world(a0 + 0.05, -0.2, h)),
+                              vec(lay.world(a0 + 0.1, 0.2, h)), vec(lay.world(a0 + 0.15, 0.4, d / 2))], "diameter": d})
+    if with_rail_like:
+        # Handrail-like: 1.5 to 2.5 cm thick, straight, 2 to 8 cm off the surface.
+        c = -side_c * u(0.18, 0.3)
+        h = u(0.02, 0.08)
+        a0 = u(-0.3, 0.0)
+        d = r4(u(0.015, 0.025))
+        cables.append({"points": [vec(lay.world(a0 - 0.08, c, d / 2)), vec(lay.world(a0, c, h)),
+                                  vec(lay.world(a0 + u(0.3, 0.5), c, h)), vec(lay.world(a0 + 0.6, c, d / 2))],
+                       "diameter": d})
+    # Boxes 5 to 20 cm proud, 10 to 40 cm across, clear of the rail.
+    for k in range(3):
+        w_a, w_c, proud = u(0.1, 0.4), u(0.1, 0.3), u(0.05, 0.2)
+        a = rng.choice((-1, 1)) * u(rail_len / 2 + 0.05 + w_a / 2, rail_len / 2 + 0.3 + w_a / 2) if k == 0 else u(-0.5, 0.5)
+        c = (rng.choice((-1, 1)) * u(0.12 + w_c / 2, 0.35 + w_c / 2)) if k else u(-0.1, 0.1)
+        base = lay.surface_depth(a, c)
+        uu, vv = lay.uv(a, c)
+        center = lay.wall.point(uu, vv, base + proud / 2)
+        size_uv = (w_c, w_a) if lay.vertical else (w_a, w_c)
+        # WALL_X: box axes = world x (normal), y (u), z (v).
+        boxes.append({"center": vec(center), "size": vec([proud, size_uv[0], size_uv[1]]),
+                      "reflectivity": r4(u(0.3, 0.7))})
+    return cables, boxes
+
+def rack_clutter(index, name, kind, what, bar, vertical):
+    rng = random.Random(1900 + index)
+    lay = RackLayout(rng, bar + 0.02, WALL_X, vertical=vertical)
+    cables, boxes = clutter_on(lay, rng, bar)
+    scene = {"rack_walls": [lay.json()], "handrails": [rail_for(lay, kind, what)], "cables": cables, "boxes": boxes}
+    foot = lay.foot()
+    along, across = lay.rail_axis(), (WALL_X.u if vertical else WALL_X.v)
+    start = add(add(foot, along, -0.25), across, 0.05)
+    end = add(add(foot, along, 0.25), across, -0.08)
+    poses = []
+    for label, dist0, dist1, rpy0, rpy1 in (("clutter-pass", 0.8, 0.6, (0, 0, 10), (10, 10, -15)),
+                                           ("clutter-close", 0.55, 0.45, (-15, -10, -10), (20, 5, 15))):
+        a = pose_on(WALL_X, start, dist0, rpy=rpy0)
+        b = pose_on(WALL_X, end, dist1, rpy=rpy1)
+        a.update({"label": label, "frames": 50, "to": {"position": b["position"], "rpy_deg": b["rpy_deg"]}})
+        poses.append(a)
+        start, end = end, start
+    return {"name": "rack-clutter-" + name,
+            "description": ("A %s %s handrail (bar %.2f m) on a seat track among ISS rack clutter: a cable 6-16 cm "
+                            "beside it, cables lying and bridging, a handrail-like cable (1.5-2.5 cm, 2-8 cm off), "
+                            "three boxes 5-20 cm proud; two passes of 50 frames.") %
+                           ("vertical" if vertical else "horizontal", kind, bar),
+            "seed": 1900 + index, "frame_rate_hz": 5, "gripper_angle_deg": 0 if vertical else 90,
+            "scene": scene, "poses": poses}
+
+def rack_no_handrail_wall():
+    rng = random.Random(2001)
+    lay = RackLayout(rng, 0.6, WALL_X, gap="opening")
+    lay2 = RackLayout(random.Random(2002), 0.6, Wall([0, 1.6, 0], [1, 0, 0], [0, 0, 1]), vertical=True, bay=True)
+    cables, boxes = clutter_on(lay, rng, 0.6)
+    # Two more handrail-like cables: straight, 2 cm thick, 4 and 7 cm off.
+    for c, h, a0 in ((0.1, 0.04, -0.3), (-0.2, 0.07, 0.1)):
+        cables.append({"points": [vec(lay.world(a0 - 0.1, c, 0.01)), vec(lay.world(a0, c, h)),
+                                  vec(lay.world(a0 + 0.45, c, h)), vec(lay.world(a0 + 0.55, c, 0.01))],
+                       "diameter": 0.02})
+    scene = {"rack_walls": [lay.json(), lay2.json()], "cables": cables, "boxes": boxes}
+    poses = [{"label": "no-rail-sweep", "position": [0.75, -0.6, 0.05], "rpy_deg": [0, 0, 0], "frames": 60,
+              "to": {"position": [0.7, 1.4, -0.05], "rpy_deg": [10, 5, 15]}},
+             {"label": "no-rail-close", "position": [0.45, 0.3, 0.2], "rpy_deg": [-20, 15, -10], "frames": 40,
+              "to": {"position": [0.5, -0.3, -0.2], "rpy_deg": [25, -10, 20]}}]
+    return {"name": "rack-no-handrail-wall",
+            "description": "ISS rack walls with seat tracks, gaps, an opening, an empty bay, edge strips, lights, "
+                           "boxes and three handrail-like cables, and no handrail: every detection is false. 100 frames.",
+            "seed": 2001, "frame_rate_hz": 5, "gripper_angle_deg": 90, "scene": scene, "poses": poses}
+
+def rack_no_handrail_corner():
+    # A wall of racks (x = 0) meeting a deck of racks (z = -0.9) in a
+    # concave corner, and an overhead (z = 1.1) in the second pass.
+    wall = RackLayout(random.Random(2101), 0.6, WALL_X, gap="recess")
+    deck = RackLayout(random.Random(2102), 0.6, Wall([0.75, 0, -0.9], [0, 0, 1], [1, 0, 0]), vertical=True)
+    over = RackLayout(random.Random(2103), 0.6, Wall([0.75, 0, 1.1], [0, 0, -1], [1, 0, 0]), vertical=False)
+    # Keep the deck and overhead in front of the wall: their racks start at x = 0.
+    for lay in (deck, over):
+        for item in lay.faces + lay.gaps + lay.bays + lay.strips:
+            lo, hi = item["v"]
+            item["v"] = [max(lo, -0.73), max(hi, -0.72)]
+        lay.tracks = [t for t in lay.tracks if min(t["from"][1], t["to"][1]) > -0.7]
+    scene = {"rack_walls": [wall.json(), deck.json(), over.json()],
+             "cables": [{"points": [[0.01, -0.6, -0.88], [0.25, -0.4, -0.86], [0.6, -0.45, -0.87]], "diameter": 0.02}]}
+    poses = [{"label": "corner-deck", "position": [0.8, -0.3, -0.3], "rpy_deg": [0, 30, 0], "frames": 40,
+              "to": {"position": [0.6, 0.4, -0.4], "rpy_deg": [15, 40, 20]}},
+             {"label": "corner-overhead", "position": [0.8, 0.4, 0.5], "rpy_deg": [0, -30, 10], "frames": 40,
+              "to": {"position": [0.6, -0.4, 0.6], "rpy_deg": [-15, -40, -20]}}]
+    return {"name": "rack-no-handrail-corner",
+            "description": "Concave corners of ISS rack walls with the deck and the overhead: rack edges, seat tracks, "
+                           "gaps and a cable, no handrail: every detection is false. 80 frames.",
+            "seed": 2101, "frame_rate_hz": 5, "gripper_angle_deg": 90, "scene": scene, "poses": poses}
+
+rack_scenarios = []
+for i, (name, kind, what, bar) in enumerate(RACK_RAILS):
+    rack_scenarios.append(rack_table2(i, name, kind, what, bar))
+WALL_DECK = Wall([0, 0, -0.9], [0, 0, 1], [1, 0, 0])      # u = -y, v = +x: cameras face -z
+WALL_OVER = Wall([0, 0, 1.1], [0, 0, -1], [1, 0, 0])      # u = +y, v = +x: cameras face +z
+rack_scenarios += [
+    rack_approach(0, "vertical-21-5", "iss_mesh", MESHES["21-5"][0], MESHES["21-5"][1], WALL_X, True, True, "wall"),
+    rack_approach(1, "horizontal-30", "iss_mesh", MESHES["30"][0], MESHES["30"][1], WALL_X, False, False, "wall"),
+    rack_approach(2, "vertical-8-5", "iss_mesh", MESHES["8-5"][0], MESHES["8-5"][1], WALL_X, True, True, "wall"),
+    rack_approach(3, "deck-41-5", "iss_mesh", MESHES["41-5"][0], MESHES["41-5"][1], WALL_DECK, True, True, "deck"),
+    rack_approach(4, "overhead-module-rail", "module_rail", 1.0, 1.0, WALL_OVER, False, False, "overhead"),
+    rack_clutter(0, "horizontal-21-5", "iss_mesh", MESHES["21-5"][0], MESHES["21-5"][1], False),
+    rack_clutter(1, "vertical-30", "iss_mesh", MESHES["30"][0], MESHES["30"][1], True),
+    rack_no_handrail_wall(), rack_no_handrail_corner()]
+
+# Controls for reading the rack-wall results: the rack-table2-iss-mesh-21-5
+# layout with its racks made flat and the handrail on the face (the
+# simulator should then score like a flat wall), and flat racks with the
+# seat track kept (what the 1.3 cm track alone does).
+def rack_control(track):
+    s = json.loads(json.dumps(rack_scenarios[1]))
+    w = s["scene"]["rack_walls"][0]
+    base = w["seat_tracks"][0]["depth"]
+    for f in w["faces"]:
+        f["depth"] = base
+    w.pop("gaps", None)
+    w.pop("bays", None)
+    w["strips"] = []
+    if track:
+        for t in w["seat_tracks"]:
+            t["depth"] = base
+    else:
+        w["seat_tracks"] = []
+        s["scene"]["handrails"][0]["foot"][0] = base
+        for p in s["poses"]:
+            p["position"][0] = r4(base + 0.60)
+    s["name"] = "rack-control-" + ("track-only" if track else "flat")
+    s["description"] = ("Control for rack-table2-iss-mesh-21-5: its rack faces all at one depth, no gaps or strips, "
+                        + ("the handrail on its 1.3 cm seat track." if track else "no seat track: the handrail on the face."))
+    return s
+
+rack_scenarios += [rack_control(False), rack_control(True)]
+
+# The Columbus laboratory (sim_hal/assets/iss_modules: metres, Z up, the long
+# axis y, the aisle's centre line near x = 0, z = -0.44). Its rack faces, as
+# ray casting finds them: starboard x = 1.0532, port x = -1.0709, deck
+# z = -1.0834, overhead z = 1.0447; rack edges (grooves, strips, openings)
+# every ~1.05 m along y. The model has no seat tracks: they are added as
+# boxes (2.6 cm x 1.3 cm) beside rack edges, and the handrails stand on them;
+# sim_hal's test_every_shipped_handrail_stands_on_a_surface checks their feet.
+COLUMBUS = "../assets/iss_modules/columbus_eu_lab.dae"
+
+def columbus_scene():
+    rails, tracks = [], []
+    def on_track(kind, what, face_point, normal, axis, track_len, along_offset=0.0):
+        # The track: from 2 mm inside the face to 1.3 cm proud of it.
+        n, a = normal, axis
+        center = add(add(face_point, n, (TRACK_H - 0.002) / 2), a, along_offset)
+        size = [0.0, 0.0, 0.0]
+        for i in range(3):
+            size[i] = abs(n[i]) * (TRACK_H + 0.002) + abs(a[i]) * track_len
+        across = [1 - abs(n[i]) - abs(a[i]) for i in range(3)]
+        size = [size[i] + across[i] * TRACK_W for i in range(3)]
+        tracks.append({"center": vec(center), "size": vec(size), "reflectivity": 0.5})
+        r = {"kind": kind, "foot": vec(add(face_point, n, TRACK_H)), "normal": n, "axis": a}
+        if kind == "iss_mesh":
+            r["mesh"] = what
+        else:
+            r["length"] = what
+        rails.append(r)
+    # Starboard: a vertical 21.5 in rail 4 cm beside the rack edge at y = 3.38.
+    on_track("iss_mesh", MESHES["21-5"][0], [1.0532, 3.42, -0.15], [-1, 0, 0], [0, 0, 1], 1.3)
+    # Port: a vertical 30 in rail beside the edge strip at y = 2.31.
+    on_track("iss_mesh", MESHES["30"][0], [-1.0709, 2.36, -0.15], [1, 0, 0], [0, 0, 1], 1.3)
+    # Deck: a 41.5 in rail across the module beside the edge at y = 3.37.
+    on_track("iss_mesh", MESHES["41-5"][0], [0.05, 3.42, -1.0834], [0, 0, 1], [1, 0, 0], 1.3)
+    # Overhead: a 1 m module rail across the module beside the edge at y = 3.4.
+    on_track("module_rail", 1.0, [0.0, 3.56, 1.0447], [0, 0, -1], [1, 0, 0], 1.2)
+    return {"meshes": [{"path": COLUMBUS, "reflectivity": 0.55}], "handrails": rails, "boxes": tracks}
+
+def columbus_approaches():
+    poses = []
+    # Toward each rail from the aisle, 12 cm along it from its centre, the
+    # rail vertical in the image (gripper angle 0).
+    for label, start, end, facing, up, rpy0, rpy1 in (
+            ("columbus-starboard", [0.0, 3.42, -0.03], [0.74, 3.42, -0.03], [1, 0, 0], [0, 0, 1], (0, 0, 10), (5, -5, -5)),
+            ("columbus-port", [0.0, 2.36, -0.03], [-0.758, 2.36, -0.03], [-1, 0, 0], [0, 0, 1], (0, 10, -15), (-10, 0, 5)),
+            ("columbus-deck", [0.17, 3.42, -0.1], [0.17, 3.42, -0.77], [0, 0, -1], [1, 0, 0], (0, 0, 0), (15, 5, -10)),
+            ("columbus-overhead", [0.12, 3.56, 0.3], [0.12, 3.56, 0.73], [0, 0, 1], [1, 0, 0], (0, -10, 10), (0, 5, 0))):
+        poses.append({"label": label, "position": start, "facing": facing, "up": up, "rpy_deg": list(rpy0),
+                      "frames": 40, "to": {"position": end, "rpy_deg": list(rpy1)}})
+    return {"name": "columbus-approaches",
+            "description": "Whole-module views inside the Columbus laboratory: approaches from the aisle to 0.3 m "
+                           "toward four handrails standing on seat tracks beside rack edges (starboard 21.5 in, port "
+                           "30 in, deck 41.5 in, overhead 1 m module rail), 40 frames each, rail vertical in the image.",
+            "seed": 2201, "frame_rate_hz": 5, "gripper_angle_deg": 0, "scene": columbus_scene(), "poses": poses}
+
+def columbus_views():
+    # Looking along and across the module from the aisle: racks, edges, the
+    # end cone, the handrails among them at 0.6 to 2.5 m.
+    poses = [{"label": "columbus-look-starboard", "position": [-0.3, 1.6, -0.2], "facing": [0.8, 1, 0],
+              "rpy_deg": [0, 0, 10], "frames": 30, "to": {"position": [-0.4, 3.0, -0.3], "rpy_deg": [0, 5, -25]}},
+             {"label": "columbus-look-port", "position": [0.4, 4.6, -0.3], "facing": [-0.8, -1, 0],
+              "rpy_deg": [0, 0, -10], "frames": 30, "to": {"position": [0.5, 3.2, -0.2], "rpy_deg": [0, 5, 20]}},
+             {"label": "columbus-look-deck", "position": [0.0, 2.0, 0.2], "facing": [0, 1, -1], "up": [0, 1, 1],
+              "frames": 30, "to": {"position": [0.1, 4.5, 0.1], "rpy_deg": [0, 0, 0]}},
+             {"label": "columbus-look-overhead", "position": [0.0, 4.8, -0.6], "facing": [0, -1, 1.2], "up": [0, -1.2, -1],
+              "rpy_deg": [0, 0, 90], "frames": 30, "to": {"position": [0.1, 2.5, -0.7], "rpy_deg": [0, 0, 90]}}]
+    return {"name": "columbus-module-views",
+            "description": "Inside the Columbus laboratory, the camera looking along and across the module at its rack "
+                           "walls, deck and overhead with four handrails on seat tracks among them (30 frames a "
+                           "view, the gripper taking rails vertical in the image).",
+            "seed": 2202, "frame_rate_hz": 5, "gripper_angle_deg": 0, "scene": columbus_scene(), "poses": poses}
+
+rack_scenarios += [columbus_approaches(), columbus_views()]
+for s in rack_scenarios:
+    write(s)

@@ -43,10 +43,14 @@ FrameTruth compute_truth(const Scene& scene, const CameraIntrinsics& cam,
     const Handrail& h = scene.handrails[k];
     const int id = static_cast<int>(k);
     int visible = 0;
+    Eigen::Vector3d visible_sum = Eigen::Vector3d::Zero();
     for (int s = 0; s < kVisibilitySamples; ++s) {
       const double f = static_cast<double>(s) / (kVisibilitySamples - 1);
       const Eigen::Vector3d p = h.end_point(0) + f * (h.end_point(1) - h.end_point(0));
-      visible += centre_point_visible(scene, cam, T_world_cam, id, p);
+      if (centre_point_visible(scene, cam, T_world_cam, id, p)) {
+        ++visible;
+        visible_sum += p;
+      }
     }
     if (visible == 0) continue;
     HandrailTruth t;
@@ -65,6 +69,7 @@ FrameTruth compute_truth(const Scene& scene, const CameraIntrinsics& cam,
     t.normal_cam = T_cam_world.rotation() * h.normal.normalized();
     t.length_m = h.bar_length_m;
     t.visible_fraction = static_cast<double>(visible) / kVisibilitySamples;
+    t.visible_center_cam = T_cam_world * (visible_sum / visible);
     truth.handrails.push_back(t);
   }
   return truth;

@@ -14,6 +14,13 @@ constexpr double kRoundRadius = 0.0175, kRoundLegHeight = 0.065;
 // The ISS bar (from the meshes in shared/assets/handrails).
 constexpr double kIssDepth = 0.035, kIssWidth = 0.019, kIssCorner = 0.008, kIssOffset = 0.061;
 constexpr double kIssLegAlong = 0.045, kIssLegAcross = 0.025;
+// The module rail: a plain box bar, 3.4 cm deep by 1.9 cm across, centre
+// line 6.1 cm off the surface (the station's 6.1 to 6.3 cm), on box legs.
+constexpr double kModuleDepth = 0.034, kModuleWidth = 0.019, kModuleOffset = 0.061;
+constexpr double kModuleLegAlong = 0.040, kModuleLegAcross = 0.025;
+// Tracks and strips reach this far into the face under them, so that no
+// ray slips through a crack between two boxes that only touch.
+constexpr double kEmbedM = 0.002;
 
 void keep_nearest(double t, const Eigen::Vector3d& n, double t_min, double* best_t,
                   Eigen::Vector3d* best_n) {
@@ -217,6 +224,8 @@ const char* to_string(HandrailKind kind) {
       return "iss";
     case HandrailKind::kIssMesh:
       return "iss_mesh";
+    case HandrailKind::kModuleRail:
+      return "module_rail";
   }
   return "unknown";
 }
@@ -229,6 +238,8 @@ double Handrail::center_offset_m() const {
       return kIssOffset;
     case HandrailKind::kIssMesh:
       return mesh_bar.center_offset_m();
+    case HandrailKind::kModuleRail:
+      return kModuleOffset;
   }
   return 0.0;
 }
@@ -304,6 +315,31 @@ void Scene::add_handrail(const Handrail& h) {
     }
     return;
   }
+  Eigen::Matrix3d R;
+  R.col(0) = n;
+  R.col(1) = a.cross(n);
+  R.col(2) = a;
+  if (h.kind == HandrailKind::kModuleRail) {
+    Surface bar =
+        make_box(bar_center, R, Eigen::Vector3d(0.5 * kModuleDepth, 0.5 * kModuleWidth, half), id,
+                 h.reflectivity);
+    // A capsule along the bar, as for the rounded bar: a long box's eight
+    // corners cull far less once the camera rolls.
+    bar.hull[0] = bar_center - half * a;
+    bar.hull[1] = bar_center + half * a;
+    bar.hull_points = 2;
+    bar.hull_radius = 0.5 * std::hypot(kModuleDepth, kModuleWidth);
+    surfaces.push_back(bar);
+    for (double sign : {-1.0, 1.0}) {
+      const Eigen::Vector3d leg =
+          h.foot_center + sign * (half - 0.5 * kModuleLegAlong) * a + 0.5 * kModuleOffset * n;
+      surfaces.push_back(make_box(
+          leg, R,
+          Eigen::Vector3d(0.5 * kModuleOffset, 0.5 * kModuleLegAcross, 0.5 * kModuleLegAlong), id,
+          h.reflectivity));
+    }
+    return;
+  }
   Surface bar{};
   bar.kind = SurfaceKind::kRoundedBar;
   bar.object_id = id;
@@ -317,10 +353,6 @@ void Scene::add_handrail(const Handrail& h) {
   bar.hull_points = 2;
   bar.hull_radius = 0.5 * std::hypot(kIssDepth, kIssWidth);
   surfaces.push_back(bar);
-  Eigen::Matrix3d R;
-  R.col(0) = n;
-  R.col(1) = a.cross(n);
-  R.col(2) = a;
   for (double sign : {-1.0, 1.0}) {
     const Eigen::Vector3d leg =
         h.foot_center + sign * (half - 0.5 * kIssLegAlong) * a + 0.5 * kIssOffset * n;
@@ -344,6 +376,109 @@ void Scene::add_cable(const std::vector<Eigen::Vector3d>& points, double diamete
 void Scene::add_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
                     const Eigen::Vector3d& size_m, double reflectivity) {
   surfaces.push_back(make_box(center, R, 0.5 * size_m, -1, reflectivity));
+}
+
+void Scene::add_rect(const Eigen::Vector3d& center, const Eigen::Vector3d& normal,
+                     const Eigen::Vector3d& u, const Eigen::Vector3d& v, double half_u_m,
+                     double half_v_m, double reflectivity) {
+  Surface s{};
+  s.kind = SurfaceKind::kRect;
+  s.object_id = -1;
+  s.reflectivity = reflectivity;
+  s.rect = {center, normal, u, v, half_u_m, half_v_m};
+  s.bound_center = center;
+  s.bound_radius = std::hypot(half_u_m, half_v_m);
+  for (int k = 0; k < 4; ++k) {
+    s.hull[k] =
+        center + ((k & 1) ? half_u_m : -half_u_m) * u + ((k & 2) ? half_v_m : -half_v_m) * v;
+  }
+  s.hull_points = 4;
+  surfaces.push_back(s);
+}
+
+Eigen::Vector3d RackWall::unit_normal() const {
+  return normal.normalized();
+}
+
+Eigen::Vector3d RackWall::unit_v() const {
+  const Eigen::Vector3d n = unit_normal();
+  return (up - up.dot(n) * n).normalized();
+}
+
+Eigen::Vector3d RackWall::unit_u() const {
+  return unit_v().cross(unit_normal());
+}
+
+Eigen::Vector3d RackWall::point(double u_m, double v_m, double depth_m) const {
+  return center + u_m * unit_u() + v_m * unit_v() + depth_m * unit_normal();
+}
+
+void Scene::add_rack_wall(const RackWall& w) {
+  rack_walls.push_back(w);
+  const Eigen::Vector3d n = w.unit_normal(), u = w.unit_u(), v = w.unit_v();
+  Eigen::Matrix3d R_wall;  // box axes: normal, u, v
+  R_wall.col(0) = n;
+  R_wall.col(1) = u;
+  R_wall.col(2) = v;
+  // A box over a wall rectangle between two depths.
+  auto slab = [&](const WallRect& r, double back_m, double front_m, double reflectivity) {
+    const Eigen::Vector3d c =
+        w.point(0.5 * (r.u0 + r.u1), 0.5 * (r.v0 + r.v1), 0.5 * (back_m + front_m));
+    surfaces.push_back(make_box(
+        c, R_wall, Eigen::Vector3d(0.5 * (front_m - back_m), 0.5 * r.width_m(), 0.5 * r.height_m()),
+        -1, reflectivity));
+  };
+  for (const RackWall::Face& f : w.faces) slab(f.rect, w.back_depth_m, f.depth_m, f.reflectivity);
+  for (const RackWall::SeatTrack& t : w.seat_tracks) {
+    const Eigen::Vector2d d = t.to - t.from;
+    const double len = d.norm();
+    if (len < 1e-6) continue;
+    const Eigen::Vector3d along = (d.x() * u + d.y() * v) / len;
+    Eigen::Matrix3d R;
+    R.col(0) = n;
+    R.col(1) = along.cross(n);
+    R.col(2) = along;
+    const Eigen::Vector2d mid = 0.5 * (t.from + t.to);
+    const double back = t.base_depth_m - kEmbedM, front = t.top_depth_m();
+    surfaces.push_back(make_box(w.point(mid.x(), mid.y(), 0.5 * (back + front)), R,
+                                Eigen::Vector3d(0.5 * (front - back), 0.5 * t.width_m, 0.5 * len),
+                                -1, t.reflectivity));
+  }
+  for (const RackWall::Recess& r : w.recesses) {
+    const double cu = 0.5 * (r.rect.u0 + r.rect.u1), cv = 0.5 * (r.rect.v0 + r.rect.v1);
+    const double hu = 0.5 * r.rect.width_m(), hv = 0.5 * r.rect.height_m();
+    if (r.has_back) add_rect(w.point(cu, cv, r.depth_m), n, u, v, hu, hv, r.reflectivity);
+    if (!r.side_walls) continue;
+    const double depth_mid = 0.5 * (r.depth_m + r.rim_depth_m);
+    const double half_depth = 0.5 * (r.rim_depth_m - r.depth_m);
+    for (double sign : {-1.0, 1.0}) {
+      // The walls at u0 and u1 (normal along u), then at v0 and v1.
+      add_rect(w.point(cu + sign * hu, cv, depth_mid), u, n, v, half_depth, hv, r.reflectivity);
+      add_rect(w.point(cu, cv + sign * hv, depth_mid), v, n, u, half_depth, hu, r.reflectivity);
+    }
+  }
+  for (const RackWall::Strip& s : w.strips) {
+    slab(s.rect, s.base_depth_m - kEmbedM, s.base_depth_m + s.height_m, s.reflectivity);
+  }
+}
+
+void Scene::add_mesh(const SceneMesh& m, double reflectivity) {
+  meshes.push_back(m);
+  Surface s{};
+  s.kind = SurfaceKind::kMesh;
+  s.object_id = -1;
+  s.reflectivity = reflectivity;
+  s.mesh.mesh = meshes.back().mesh.get();
+  s.mesh.R = m.R;
+  s.mesh.t = m.t;
+  const Eigen::Vector3d lo = m.mesh->min_corner(), hi = m.mesh->max_corner();
+  const Eigen::Vector3d center = m.R * (0.5 * (lo + hi)) + m.t;
+  s.bound_center = center;
+  s.bound_radius = 0.5 * (hi - lo).norm();
+  // The model's box as the hull: a camera inside a module sees it behind
+  // the image plane, and every tile keeps it.
+  set_box_hull(center, m.R, 0.5 * (hi - lo), &s);
+  surfaces.push_back(s);
 }
 
 bool intersect_scene(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& d,

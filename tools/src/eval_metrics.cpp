@@ -28,6 +28,23 @@ int target_handrail(const sim_hal::FrameTruth& truth, double gripper_angle_rad) 
   return best;
 }
 
+int target_handrail_in_reach(const sim_hal::FrameTruth& truth, double gripper_angle_rad) {
+  int best = -1;
+  double best_diff = 0.0;
+  for (std::size_t k = 0; k < truth.handrails.size(); ++k) {
+    const sim_hal::HandrailTruth& h = truth.handrails[k];
+    const double range_m = h.visible_center_cam.norm();
+    if (h.visible_fraction < 0.35 || range_m < 0.25 || range_m > 1.5) continue;
+    const double psi = std::atan2(std::fabs(h.axis_cam.x()), std::fabs(h.axis_cam.y()));
+    const double diff = std::fabs(psi - gripper_angle_rad);
+    if (best < 0 || diff < best_diff) {
+      best = static_cast<int>(k);
+      best_diff = diff;
+    }
+  }
+  return best;
+}
+
 FrameErrors score_detection(const estimator::HandrailDetection& d,
                             const sim_hal::HandrailTruth& t) {
   const Eigen::Matrix3f R_gt =
@@ -91,13 +108,62 @@ std::string Stats::mean_sd(int decimals) const {
   return buf;
 }
 
-void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth,
-                int target) {
+namespace {
+
+ConfusionColumn said(estimator::HandrailState state) {
+  switch (state) {
+    case estimator::HandrailState::kBothEnds:
+      return kSaidBE;
+    case estimator::HandrailState::kOneEnd:
+      return kSaidOE;
+    case estimator::HandrailState::kNoEnd:
+      return kSaidNE;
+    case estimator::HandrailState::kNoHandrail:
+      break;
+  }
+  return kSaidNH;
+}
+
+ConfusionRow truth_row(estimator::HandrailState state) {
+  switch (state) {
+    case estimator::HandrailState::kBothEnds:
+      return kTruthBE;
+    case estimator::HandrailState::kOneEnd:
+      return kTruthOE;
+    case estimator::HandrailState::kNoEnd:
+      return kTruthNE;
+    case estimator::HandrailState::kNoHandrail:
+      break;
+  }
+  return kTruthNH;
+}
+
+}  // namespace
+
+void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth, int target,
+                int reach_target) {
   ++frames;
   time_ms.add(d.processing_time_us / 1000.0);
   const bool has_target = target >= 0;
   target_frames += has_target;
-  if (d.status != estimator::DetectStatus::kFound) return;
+  reach_target_frames += reach_target >= 0;
+  const int row = has_target
+                      ? truth_row(expected_state(truth.handrails[static_cast<std::size_t>(target)]))
+                      : kTruthNH;
+  if (reach_target >= 0 && d.status == estimator::DetectStatus::kFound) {
+    reach_correct +=
+        is_correct(score_detection(d, truth.handrails[static_cast<std::size_t>(reach_target)]));
+  }
+  if (d.status != estimator::DetectStatus::kFound) {
+    std::string why = estimator::to_string(d.status);
+    if (d.status == estimator::DetectStatus::kNoLine) {
+      why += std::string(" (") + estimator::to_string(d.counts.first_rejection) + ")";
+    }
+    ++reasons[why];
+    ++confusion[row][kSaidNH];
+    if (has_target) missed_frames.push_back(truth.frame);
+    return;
+  }
   ++found;
   if (!has_target) {
     // Too little of any handrail in view to expect a detection; one that
@@ -106,16 +172,25 @@ void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth
     for (const sim_hal::HandrailTruth& h : truth.handrails)
       matches_any |= is_correct(score_detection(d, h));
     false_found += !matches_any;
+    ++reasons[matches_any ? "FOUND" : "FALSE"];
+    ++confusion[row][matches_any ? said(d.state) : kSaidFalse];
+    if (!matches_any) false_frames.push_back(truth.frame);
     return;
   }
   const sim_hal::HandrailTruth& t = truth.handrails[static_cast<std::size_t>(target)];
   const FrameErrors e = score_detection(d, t);
   if (!is_correct(e)) {
     ++false_found;
+    ++reasons["FALSE"];
+    ++confusion[row][kSaidFalse];
+    missed_frames.push_back(truth.frame);
+    false_frames.push_back(truth.frame);
   } else {
     ++correct;
     ++state_checked;
     state_right += d.state == expected_state(t);
+    ++reasons["FOUND"];
+    ++confusion[row][said(d.state)];
   }
   // Errors over every detection of a frame that has a target, as the
   // paper's Figure 15 does: picking a cable shows up as a large error.
@@ -129,6 +204,46 @@ void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth
   axis.add(e.axis_deg);
   normal.add(e.normal_deg);
   if (!std::isnan(e.beam_mm)) beam.add(e.beam_mm);
+}
+
+void Tally::merge(const Tally& o) {
+  frames += o.frames;
+  target_frames += o.target_frames;
+  found += o.found;
+  correct += o.correct;
+  false_found += o.false_found;
+  state_checked += o.state_checked;
+  state_right += o.state_right;
+  reach_target_frames += o.reach_target_frames;
+  reach_correct += o.reach_correct;
+  Stats Tally::*const all[] = {&Tally::x,      &Tally::y,     &Tally::z,      &Tally::perpendicular,
+                               &Tally::roll,   &Tally::pitch, &Tally::yaw,    &Tally::axis,
+                               &Tally::normal, &Tally::beam,  &Tally::time_ms};
+  for (Stats Tally::*st : all) {
+    (this->*st).values.insert((this->*st).values.end(), (o.*st).values.begin(),
+                              (o.*st).values.end());
+  }
+  for (const auto& kv : o.reasons) reasons[kv.first] += kv.second;
+  missed_frames.insert(missed_frames.end(), o.missed_frames.begin(), o.missed_frames.end());
+  false_frames.insert(false_frames.end(), o.false_frames.begin(), o.false_frames.end());
+  for (int r = 0; r < kConfusionRows; ++r)
+    for (int c = 0; c < kConfusionColumns; ++c) confusion[r][c] += o.confusion[r][c];
+}
+
+std::string frame_ranges(const std::vector<std::uint64_t>& frames, std::size_t max_ranges) {
+  if (frames.empty()) return "none";
+  std::string out = std::to_string(frames.size()) + ": ";
+  std::size_t ranges = 0, k = 0;
+  for (; k < frames.size() && ranges < max_ranges; ++ranges) {
+    std::size_t j = k;
+    while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
+    if (ranges) out += ", ";
+    out += std::to_string(frames[k]);
+    if (j > k) out += "-" + std::to_string(frames[j]);
+    k = j + 1;
+  }
+  if (k < frames.size()) out += ", ... (" + std::to_string(frames.size() - k) + " more)";
+  return out;
 }
 
 }  // namespace tools

@@ -1,5 +1,7 @@
 #pragma once
 // Scoring detections against the simulator's ground truth, for hreval.
+#include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,12 @@ struct FrameErrors {
 // the one whose image angle is nearest the gripper angle. -1 if none.
 int target_handrail(const sim_hal::FrameTruth& truth, double gripper_angle_rad);
 
+// Issue #17's definition of a frame with a target: a handrail at least 35 %
+// visible whose visible part's middle is 0.25 to 1.5 m from the camera
+// (nearer, the detector's wall fills the view; farther, the bar is a few
+// pixels); among several, the one nearest the gripper angle. -1 if none.
+int target_handrail_in_reach(const sim_hal::FrameTruth& truth, double gripper_angle_rad);
+
 FrameErrors score_detection(const estimator::HandrailDetection& d, const sim_hal::HandrailTruth& t);
 
 // A detection is correct when it lies within 5 cm of the target's centre
@@ -40,6 +48,11 @@ struct Stats {
   std::string mean_sd(int decimals = 1) const;  // "m +- s", or "-" when empty
 };
 
+// The state confusion matrix's rows (what is in view) and columns (what
+// the detector said).
+enum ConfusionRow { kTruthBE, kTruthOE, kTruthNE, kTruthNH, kConfusionRows };
+enum ConfusionColumn { kSaidBE, kSaidOE, kSaidNE, kSaidFalse, kSaidNH, kConfusionColumns };
+
 // Everything hreval accumulates for one group of frames and one method.
 struct Tally {
   int frames = 0;
@@ -49,10 +62,32 @@ struct Tally {
   int false_found = 0;    // ... and it was not (or there was none)
   int state_checked = 0;
   int state_right = 0;
+  // The same detection rate over issue #17's frames with a target
+  // (target_handrail_in_reach).
+  int reach_target_frames = 0;
+  int reach_correct = 0;
   Stats x, y, z, perpendicular, roll, pitch, yaw, axis, normal, beam, time_ms;
+  // Why each frame came out as it did: FOUND (the target, or a handrail in
+  // view), FALSE (a detection that is not), or the detector's status
+  // (NO_PLANE, NO_CANDIDATES, NO_LINE with its first line rejection, ...).
+  std::map<std::string, int> reasons;
+  // Frames with a target whose target was not found, and frames with a
+  // false detection (frame indices).
+  std::vector<std::uint64_t> missed_frames, false_frames;
+  // Rows: the target's state from the truth (NH: no target); columns: the
+  // state reported with a correct detection, a false one, or none.
+  int confusion[kConfusionRows][kConfusionColumns] = {};
 
-  void add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth, int target);
+  // `target` as target_handrail picks it, `reach_target` as
+  // target_handrail_in_reach does.
+  void add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth, int target,
+           int reach_target);
+  void merge(const Tally& other);
   double rate(int n, int of) const { return of ? 100.0 * n / of : 0.0; }
 };
+
+// "25: 0-4, 9, 12-30" (the count, then ranges) from sorted frame indices,
+// at most max_ranges ranges and then how many frames more.
+std::string frame_ranges(const std::vector<std::uint64_t>& frames, std::size_t max_ranges = 12);
 
 }  // namespace tools

@@ -37,6 +37,8 @@ void usage(FILE* out) {
                "  --scenarios DIR   scenario folder (default %s)\n"
                "  --out DIR         where report.md and the charts go (default hreval-out)\n"
                "  --max-frames N    at most N frames per scenario (for a quick look)\n"
+               "  --true-length     configure the detector for each scenario's first handrail's\n"
+               "                    bar length (default: the flight default, 0.55 m)\n"
                "  -h, --help        this text\n",
                HRP_SCENARIO_DIR);
 }
@@ -48,10 +50,37 @@ struct MethodTallies {
 
 struct ScenarioResult {
   std::string name, kind;
+  std::string surface;      // "flat wall", "rack wall", "Columbus"
   MethodTallies method[2];  // proposed, basic
 };
 
 const char* kMethodNames[2] = {"proposed", "basic"};
+
+// What the handrails stand on: a module mesh, rack walls, or plain walls.
+std::string surface_kind(const sim_hal::Scene& scene) {
+  if (!scene.meshes.empty()) {
+    for (const sim_hal::SceneMesh& m : scene.meshes)
+      if (m.path.find("columbus") != std::string::npos) return "Columbus";
+    return "module mesh";
+  }
+  return scene.rack_walls.empty() ? "flat wall" : "rack wall";
+}
+
+// The target's bar length as a row label (frames without a target apart).
+std::string length_label(const sim_hal::FrameTruth& truth, int target) {
+  if (target < 0) return "no target";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f m",
+                truth.handrails[static_cast<std::size_t>(target)].length_m);
+  return buf;
+}
+
+bool is_table2(const std::string& name) {
+  return name.find("table2") != std::string::npos;
+}
+bool is_new(const ScenarioResult& r) {
+  return r.surface != "flat wall";
+}
 
 std::vector<std::string> list_scenarios(const std::string& dir) {
   std::vector<std::string> files;
@@ -103,6 +132,7 @@ void table2_rows(std::ostringstream& md, const ScenarioResult& r) {
 int main(int argc, char** argv) {
   std::string scenario_dir = HRP_SCENARIO_DIR, out_dir = "hreval-out";
   long max_frames = -1;
+  bool true_length = false;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -122,6 +152,8 @@ int main(int argc, char** argv) {
       out_dir = next("--out");
     } else if (a == "--max-frames") {
       max_frames = std::atol(next("--max-frames").c_str());
+    } else if (a == "--true-length") {
+      true_length = true;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "hreval: unknown option '%s' (see --help)\n", a.c_str());
       return 2;
@@ -142,6 +174,9 @@ int main(int argc, char** argv) {
 
   const sim_hal::CameraIntrinsics cam = sim_hal::pico_flexx_intrinsics();
   std::vector<ScenarioResult> results;
+  // Per surface kind and the target's length, over every frame of every
+  // scenario, each method.
+  std::map<std::pair<std::string, std::string>, tools::Tally> by_surface_length[2];
   int failures = 0;
   std::vector<hal::DepthPoint> points;
   std::vector<estimator::CloudPoint> buffer;
@@ -158,8 +193,18 @@ int main(int argc, char** argv) {
     const bool round = !sc.scene.handrails.empty() &&
                        sc.scene.handrails[0].kind == sim_hal::HandrailKind::kPaperRound;
     r.kind = round ? "round" : "iss";
+    r.surface = surface_kind(sc.scene);
+    // The rack-wall controls (one depth, to check the simulator scores a
+    // flat rack like a flat wall) stay out of the rack walls' figures.
+    if (r.surface == "rack wall" && r.name.find("control") != std::string::npos)
+      r.surface = "rack wall (control)";
+    // The flight default unless asked: the detector looks for a 0.55 m bar.
+    const float length_m = true_length && !sc.scene.handrails.empty()
+                               ? static_cast<float>(sc.scene.handrails[0].bar_length_m)
+                               : 0.55f;
     estimator::DetectorConfig cfg;
-    cfg.handrail = round ? estimator::paper_round_handrail(0.55f) : estimator::iss_handrail(0.55f);
+    cfg.handrail =
+        round ? estimator::paper_round_handrail(length_m) : estimator::iss_handrail(length_m);
     cfg.gripper_angle_rad = static_cast<float>(sc.gripper_angle_deg * M_PI / 180.0);
     estimator::HandrailDetector proposed(cfg), basic(cfg);
     sim_hal::DepthRenderer renderer(cam, sc.sensor);
@@ -170,15 +215,18 @@ int main(int argc, char** argv) {
       renderer.render(sc.scene, sc.T_world_cam[f], sc.seed, f, &points);
       const sim_hal::FrameTruth truth = sim_hal::compute_truth(sc.scene, cam, sc.T_world_cam[f], f);
       const int target = tools::target_handrail(truth, cfg.gripper_angle_rad);
+      const int reach_target = tools::target_handrail_in_reach(truth, cfg.gripper_angle_rad);
       const hal::DepthFrame frame{f, static_cast<std::int64_t>(f) * 200000, cam.width, cam.height,
                                   points.data()};
       const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
       const estimator::HandrailDetection d[2] = {
           proposed.detect(cloud, estimator::Method::kProposed),
           basic.detect(cloud, estimator::Method::kBasic)};
+      const std::pair<std::string, std::string> group(r.surface, length_label(truth, target));
       for (int m = 0; m < 2; ++m) {
-        r.method[m].by_label[sc.pose_labels[f]].add(d[m], truth, target);
-        r.method[m].all.add(d[m], truth, target);
+        r.method[m].by_label[sc.pose_labels[f]].add(d[m], truth, target, reach_target);
+        r.method[m].all.add(d[m], truth, target, reach_target);
+        by_surface_length[m][group].add(d[m], truth, target, reach_target);
       }
       progress.update(f + 1);
     }
@@ -195,9 +243,11 @@ int main(int argc, char** argv) {
         "(at least 30 % of a handrail in view). False: frames with a detection that is not the "
         "target, "
         "over all frames. State: BE / OE / NE right, over correct detections.\n\n"
+     << "In reach (issue #17's definition): frames where a handrail is at least 35 % visible with "
+        "the middle of its visible part 0.25 to 1.5 m away, and the detection rate over them.\n\n"
      << "| scenario | handrail | method | frames | with target | detected | false | state right | "
-        "median ms |\n"
-     << "|---|---|---|---|---|---|---|---|---|\n";
+        "median ms | in reach | detected in reach |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ScenarioResult& r : results) {
     for (int m = 0; m < 2; ++m) {
       const tools::Tally& t = r.method[m].all;
@@ -207,6 +257,7 @@ int main(int argc, char** argv) {
          << " | " << t.target_frames << " | " << pct(t.correct, t.target_frames) << " | "
          << pct(t.false_found, t.frames) << " | "
          << (m == 0 ? pct(t.state_right, t.state_checked) : std::string("n/a")) << " | " << ms
+         << " | " << t.reach_target_frames << " | " << pct(t.reach_correct, t.reach_target_frames)
          << " |\n";
     }
   }
@@ -222,6 +273,90 @@ int main(int argc, char** argv) {
       md << "\n![" << r.name << "](figure15-" << r.name << ".png)\n";
     } else {
       std::fprintf(stderr, "hreval: %s\n", error.c_str());
+    }
+  }
+  // Issue #17: by surface and handrail length, the rack walls' Figure 15,
+  // the state confusion on the approaches, and why frames failed.
+  md << "\n## By surface and handrail length\n\n"
+     << "Every frame of every scenario run, grouped by what the handrails stand on and the "
+        "target's bar length (frames without a target apart: any detection there is false).\n\n"
+     << "| surface | target length | method | frames | with target | detected | in reach | "
+        "detected in reach | false |\n"
+     << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const char* surface :
+       {"flat wall", "rack wall", "rack wall (control)", "Columbus", "module mesh"}) {
+    for (const auto& kv : by_surface_length[0]) {
+      if (kv.first.first != surface) continue;
+      for (int m = 0; m < 2; ++m) {
+        const tools::Tally& t = by_surface_length[m][kv.first];
+        md << "| " << surface << " | " << kv.first.second << " | " << kMethodNames[m] << " | "
+           << t.frames << " | " << t.target_frames << " | " << pct(t.correct, t.target_frames)
+           << " | " << t.reach_target_frames << " | " << pct(t.reach_correct, t.reach_target_frames)
+           << " | " << pct(t.false_found, t.frames) << " |\n";
+      }
+    }
+  }
+  // The rack walls' Table 2, all lengths together, as Figure 15.
+  {
+    tools::Tally rack[2];
+    int merged = 0;
+    for (const ScenarioResult& r : results) {
+      if (r.surface != "rack wall" || !is_table2(r.name)) continue;
+      for (int m = 0; m < 2; ++m) rack[m].merge(r.method[m].all);
+      ++merged;
+    }
+    if (merged > 0) {
+      std::string error;
+      const std::vector<tools::ChartSeries> series = {{"BASIC", &rack[1]}, {"PROPOSED", &rack[0]}};
+      if (tools::write_error_chart(
+              out_dir + "/figure15-rack-walls.png",
+              "POSE ERROR, TABLE 2 ON RACK WALLS (" + std::to_string(merged) + " SCENARIOS)",
+              series, &error)) {
+        md << "\n## Table 2 on rack walls\n\n"
+           << merged << " scenarios, every handrail length: proposed detected "
+           << pct(rack[0].correct, rack[0].target_frames) << ", basic "
+           << pct(rack[1].correct, rack[1].target_frames)
+           << ".\n\n![Table 2 on rack walls](figure15-rack-walls.png)\n";
+      } else {
+        std::fprintf(stderr, "hreval: %s\n", error.c_str());
+      }
+      for (const ScenarioResult& r : results) {
+        if (r.surface == "rack wall" && is_table2(r.name)) table2_rows(md, r);
+      }
+    }
+  }
+  // The proposed method's state against the truth's on the approaches.
+  for (const ScenarioResult& r : results) {
+    if (r.name.find("approach") == std::string::npos || !is_new(r)) continue;
+    const tools::Tally& t = r.method[0].all;
+    md << "\n### " << r.name << ": state confusion (proposed)\n\n"
+       << "Rows: the target's state in the truth (NH: no target); columns: the state reported with "
+          "a correct detection, a false detection, or nothing found.\n\n"
+       << "| truth \\ said | BE | OE | NE | false | NH |\n|---|---|---|---|---|---|\n";
+    const char* rows[] = {"BE", "OE", "NE", "NH"};
+    for (int row = 0; row < tools::kConfusionRows; ++row) {
+      md << "| " << rows[row];
+      for (int c = 0; c < tools::kConfusionColumns; ++c) md << " | " << t.confusion[row][c];
+      md << " |\n";
+    }
+  }
+  md << "\n## Failures and the detector's reasons\n\n"
+     << "Per scenario and method: the frames with a target where the target was not found, the "
+        "frames with a false detection, and what the detector reported over all frames (FOUND: "
+        "the target or a handrail in view; FALSE: a detection that is not; NO_LINE with its "
+        "best line's first rejection).\n\n"
+     << "| scenario | method | missed frames | false frames | reasons |\n|---|---|---|---|---|\n";
+  for (const ScenarioResult& r : results) {
+    for (int m = 0; m < 2; ++m) {
+      const tools::Tally& t = r.method[m].all;
+      std::string reasons;
+      for (const auto& kv : t.reasons) {
+        if (!reasons.empty()) reasons += ", ";
+        reasons += kv.first + " " + std::to_string(kv.second);
+      }
+      md << "| " << r.name << " | " << kMethodNames[m] << " | "
+         << tools::frame_ranges(t.missed_frames) << " | " << tools::frame_ranges(t.false_frames)
+         << " | " << reasons << " |\n";
     }
   }
   const std::string report = md.str();
@@ -242,6 +377,13 @@ int main(int argc, char** argv) {
     } else if (r.name == "clutter-only") {
       std::printf("- %s: false detections %.1f %% of frames (target <= 1)\n", r.name.c_str(),
                   p.rate(p.false_found, p.frames));
+    } else if (is_new(r) && p.target_frames == 0) {
+      std::printf("- %s (%s, no handrail): false detections %.1f %% of frames (target <= 1)\n",
+                  r.name.c_str(), r.surface.c_str(), p.rate(p.false_found, p.frames));
+    } else if (is_new(r)) {
+      std::printf("- %s (%s): detection %.1f %% (in reach %.1f %%), false %.1f %% of frames\n",
+                  r.name.c_str(), r.surface.c_str(), p.rate(p.correct, p.target_frames),
+                  p.rate(p.reach_correct, p.reach_target_frames), p.rate(p.false_found, p.frames));
     }
   }
   std::printf("\nreport: %s/report.md\n", out_dir.c_str());

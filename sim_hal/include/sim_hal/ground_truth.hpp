@@ -19,6 +19,9 @@ struct HandrailTruth {
   Eigen::Vector3d normal_cam;   // wall normal, toward the room
   double length_m = 0.0;
   double visible_fraction = 0.0;  // of the centre line, in the image and unoccluded
+  // The middle of the visible samples of the centre line, camera frame (the
+  // centre when nothing hides it): how far away the part in view is.
+  Eigen::Vector3d visible_center_cam = Eigen::Vector3d::Zero();
   bool end_in_view[2] = {false, false};
 };
 

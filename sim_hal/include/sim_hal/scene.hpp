@@ -12,8 +12,9 @@
 namespace sim_hal {
 
 // kIss is the analytic rounded-rectangle bar; kIssMesh one of the real
-// handrail meshes.
-enum class HandrailKind : std::uint8_t { kPaperRound, kIss, kIssMesh };
+// handrail meshes; kModuleRail the plain box bar on box legs built into the
+// modules (about 1 m long).
+enum class HandrailKind : std::uint8_t { kPaperRound, kIss, kIssMesh, kModuleRail };
 const char* to_string(HandrailKind kind);
 
 // A bounded plane: centre, unit normal, in-plane unit axes u and v, half
@@ -87,14 +88,91 @@ struct Handrail {
   // origin on the wall at the footprint's centre) and its bar as measured.
   std::shared_ptr<const TriangleMesh> mesh;
   BarExtent mesh_bar{};
-  // Centre-line geometry per kind (the estimator's geometry config agrees).
+  // Centre-line geometry per kind (the estimator's geometry config agrees,
+  // except for kModuleRail, which it has no kind for).
   double center_offset_m() const;
   Eigen::Vector3d end_point(int end) const;  // centre line, end 0 at -axis
+};
+
+// A rectangle in a rack wall's own coordinates (metres): u from u0 to u1,
+// v from v0 to v1.
+struct WallRect {
+  double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;
+  double width_m() const { return u1 - u0; }
+  double height_m() const { return v1 - v0; }
+};
+
+// A wall, deck or overhead of ISS racks. Its frame: `center` on the
+// reference plane, `normal` toward the room, v along `up` (projected onto
+// the plane), u = v x normal (as for a plain wall). A depth is a distance
+// along the normal from the reference plane: positive stands proud,
+// negative is recessed.
+struct RackWall {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  // How far back the racks reach: each face is a box from here to its
+  // depth, so a step between faces and the sides of a gap have walls.
+  double back_depth_m = -0.40;
+  struct Face {
+    WallRect rect;
+    double depth_m = 0.0;
+    double reflectivity = 0.6;
+  };
+  // A strip about 2.6 cm wide and 1.3 cm proud along a rack edge, on the
+  // surface at base_depth_m (the face it sits on); handrails stand on it.
+  struct SeatTrack {
+    Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();  // (u, v)
+    double base_depth_m = 0.0, width_m = 0.026, height_m = 0.013;
+    double reflectivity = 0.5;
+    double top_depth_m() const { return base_depth_m + height_m; }
+  };
+  // Where no face is: a gap between racks or an empty bay. With a back, a
+  // surface at depth_m; without, the ray goes on (an opening that returns
+  // nothing). With side walls, four walls from depth_m up to rim_depth_m
+  // (a bay's box recess, where no neighbouring face provides them).
+  struct Recess {
+    WallRect rect;
+    bool has_back = true;
+    double depth_m = -0.12;
+    bool side_walls = false;
+    double rim_depth_m = 0.0;
+    double reflectivity = 0.3;
+  };
+  // A small raised rectangle of its own reflectivity (edge strips, lights,
+  // labels): from base_depth_m to base_depth_m + height_m.
+  struct Strip {
+    WallRect rect;
+    double base_depth_m = 0.0, height_m = 0.003;
+    double reflectivity = 0.8;
+  };
+  std::vector<Face> faces;
+  std::vector<SeatTrack> seat_tracks;
+  std::vector<Recess> recesses;
+  std::vector<Strip> strips;
+
+  Eigen::Vector3d unit_normal() const;
+  Eigen::Vector3d unit_u() const;
+  Eigen::Vector3d unit_v() const;
+  // A point given in the wall's coordinates, in the world.
+  Eigen::Vector3d point(double u_m, double v_m, double depth_m) const;
+};
+
+// A triangle mesh placed in the scene as clutter or structure (an ISS module
+// interior): world = R * model + t.
+struct SceneMesh {
+  std::string path;
+  std::shared_ptr<const TriangleMesh> mesh;
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
 };
 
 struct Scene {
   std::vector<Surface> surfaces;
   std::vector<Handrail> handrails;
+  // What the scene was built from beyond plain surfaces (evaluation reports
+  // by surface kind; the meshes are owned here).
+  std::vector<RackWall> rack_walls;
+  std::vector<SceneMesh> meshes;
 
   void add_wall(const Eigen::Vector3d& center, const Eigen::Vector3d& normal,
                 const Eigen::Vector3d& up, double width_m, double height_m,
@@ -106,6 +184,14 @@ struct Scene {
                  double reflectivity = 0.3);
   void add_box(const Eigen::Vector3d& center, const Eigen::Matrix3d& R,
                const Eigen::Vector3d& size_m, double reflectivity = 0.5);
+  // A bounded plane: `u` and `v` unit and perpendicular to `normal`.
+  void add_rect(const Eigen::Vector3d& center, const Eigen::Vector3d& normal,
+                const Eigen::Vector3d& u, const Eigen::Vector3d& v, double half_u_m,
+                double half_v_m, double reflectivity);
+  // The faces as boxes, the tracks and strips as boxes, the recesses'
+  // backs and side walls as rectangles.
+  void add_rack_wall(const RackWall& wall);
+  void add_mesh(const SceneMesh& mesh, double reflectivity = 0.5);
 };
 
 struct Hit {
