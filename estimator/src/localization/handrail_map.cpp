@@ -1,0 +1,63 @@
+#include "estimator/localization/handrail_map.hpp"
+
+namespace estimator::localization {
+
+Eigen::Matrix3d flip_axis(const Eigen::Matrix3d& R_x_handrail) {
+  Eigen::Matrix3d R = R_x_handrail;
+  R.col(1) = -R.col(1);
+  R.col(2) = -R.col(2);
+  return R;
+}
+
+void HandrailMapBuilder::reset() {
+  *this = HandrailMapBuilder();
+}
+
+void HandrailMapBuilder::start(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  count_ = 1;
+  sum_p_ = T.translation();
+  sum_q_ = q.coeffs();
+  mean_p_ = sum_p_;
+  mean_q_ = q;
+}
+
+UpdateStatus HandrailMapBuilder::add_sighting(const LocalizationConfig& cfg,
+                                              const Eigen::Isometry3d& T_world_handrail,
+                                              bool* restarted) {
+  *restarted = false;
+  if (map_.valid) return UpdateStatus::kMapInitialized;
+  Eigen::Isometry3d T = T_world_handrail;
+  if (count_ == 0) {
+    start(T);
+  } else {
+    // The same bar with its axis reversed is the same sighting.
+    if (T.linear().col(2).dot(mean_q_.toRotationMatrix().col(2)) < 0.0) {
+      T.linear() = flip_axis(T.linear());
+    }
+    Eigen::Quaterniond q(T.linear());
+    if (q.coeffs().dot(mean_q_.coeffs()) < 0.0) q.coeffs() = -q.coeffs();
+    const bool agrees = (T.translation() - mean_p_).norm() <= cfg.map_consistency_m &&
+                        q.angularDistance(mean_q_) <= cfg.map_consistency_rad;
+    if (!agrees) {
+      start(T);
+      *restarted = true;
+    } else {
+      ++count_;
+      sum_p_ += T.translation();
+      sum_q_ += q.coeffs();
+      mean_p_ = sum_p_ / count_;
+      // The normalised sum of same-hemisphere quaternions: the rotation mean
+      // to second order in the spread, which the consistency test keeps small.
+      mean_q_.coeffs() = sum_q_.normalized();
+    }
+  }
+  if (count_ < cfg.map_init_sightings) return UpdateStatus::kMapSighting;
+  map_.valid = true;
+  map_.T_world_handrail.setIdentity();
+  map_.T_world_handrail.linear() = mean_q_.toRotationMatrix();
+  map_.T_world_handrail.translation() = mean_p_;
+  return UpdateStatus::kMapInitialized;
+}
+
+}  // namespace estimator::localization
