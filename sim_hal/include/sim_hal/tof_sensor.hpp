@@ -67,6 +67,18 @@ class DepthRenderer {
   void render(const Scene& scene, const Eigen::Isometry3d& T_world_cam, std::uint64_t seed,
               std::uint64_t frame_index, std::vector<hal::DepthPoint>* out);
 
+  // Only casts the rays (no sensor effects): fills true_range_m(),
+  // hit_surface(), cos_incidence() and unit_amplitude() for the raw-frame
+  // renderer (tof_raw_renderer.hpp), which forms its own samples from them.
+  void cast(const Scene& scene, const Eigen::Isometry3d& T_world_cam) {
+    cast_rays(scene, T_world_cam);
+  }
+  // The last cast's reflectivity * cos(incidence) / range^2 (0 = no hit),
+  // before exposure, and |cos| of the incidence.
+  const std::vector<float>& unit_amplitude() const { return amplitude_; }
+  const std::vector<float>& cos_incidence() const { return cos_incidence_; }
+  const std::vector<Eigen::Vector3f>& rays() const { return rays_; }
+
   const CameraIntrinsics& camera() const { return cam_; }
   const ToFSettings& settings() const { return settings_; }
   // The last frame's exact ranges (0 = no hit) and hit surfaces (-1 = none).

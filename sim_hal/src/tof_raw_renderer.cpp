@@ -1,0 +1,242 @@
+#include "sim_hal/tof_raw_renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim_hal/sim_random.hpp"
+
+namespace sim_hal {
+namespace {
+
+// The round trip's phase per metre of range at `hz`: 4 pi f / c.
+double phase_per_m(double hz) {
+  return 4.0 * M_PI * hz / tof::kSpeedOfLight_m_s;
+}
+
+}  // namespace
+
+RawRenderer::RawRenderer(const CameraIntrinsics& cam, const ToFSettings& depth_settings,
+                         const RawRenderSettings& settings, const tof::Calibration& calibration)
+    : caster_(cam, depth_settings), settings_(settings), calibration_(calibration) {
+  const std::size_t n = static_cast<std::size_t>(cam.width) * cam.height;
+  for (int f = 0; f < calibration.frequency_count; ++f) {
+    const double k = phase_per_m(calibration.frequency[f].frequency_hz);
+    fixed_cos_[f].resize(n);
+    fixed_sin_[f].resize(n);
+    for (std::uint32_t row = 0; row < cam.height; ++row) {
+      for (std::uint32_t col = 0; col < cam.width; ++col) {
+        const double phase = k * tof::pixel_offset_m(calibration, row, col) +
+                             calibration.frequency[f].phase_offset_rad;
+        fixed_cos_[f][row * cam.width + col] = static_cast<float>(std::cos(phase));
+        fixed_sin_[f][row * cam.width + col] = static_cast<float>(std::sin(phase));
+      }
+    }
+  }
+  for (std::vector<float>* v : {&amplitude_, &background_, &ambient_, &own_re_, &own_im_, &sum_re_,
+                                &sum_im_, &sum_background_}) {
+    v->resize(n);
+  }
+  sorted_.reserve(n);
+}
+
+std::uint32_t RawRenderer::choose_exposure_us(std::uint32_t max_exposure_us) {
+  if (!settings_.auto_exposure) return std::min(settings_.manual_exposure_us, max_exposure_us);
+  const std::vector<float>& unit = caster_.unit_amplitude();
+  sorted_.clear();
+  for (float a : unit) {
+    if (a > 0.0f) sorted_.push_back(a);
+  }
+  if (sorted_.empty()) return max_exposure_us;
+  const std::size_t k = sorted_.size() * 95 / 100;
+  std::nth_element(sorted_.begin(), sorted_.begin() + static_cast<std::ptrdiff_t>(k),
+                   sorted_.end());
+  const double wanted = settings_.amplitude_target_dn /
+                        (settings_.amplitude_dn_per_us_m2 * std::max(sorted_[k], 1e-9f));
+  return static_cast<std::uint32_t>(std::clamp(wanted, 1.0, static_cast<double>(max_exposure_us)));
+}
+
+// Each pixel's own return in DN at this exposure.
+void RawRenderer::gather_returns(const Scene& scene, double exposure_us) {
+  const std::vector<float>& unit = caster_.unit_amplitude();
+  const std::vector<std::int32_t>& surface = caster_.hit_surface();
+  const float gain = static_cast<float>(settings_.amplitude_dn_per_us_m2 * exposure_us);
+  const float inv_contrast = static_cast<float>(1.0 / settings_.modulation_contrast);
+  const float ambient = static_cast<float>(settings_.ambient_dn_per_us * exposure_us);
+  for (std::size_t i = 0; i < unit.size(); ++i) {
+    amplitude_[i] = gain * unit[i];
+    background_[i] = amplitude_[i] * inv_contrast;
+    const std::int32_t s = surface[i];
+    ambient_[i] =
+        s >= 0
+            ? ambient * static_cast<float>(scene.surfaces[static_cast<std::size_t>(s)].reflectivity)
+            : 0.0f;
+  }
+}
+
+// The light arriving at each pixel for one frequency, as a phasor: its own
+// return and its footprint's share of the neighbours' (a neighbour off the
+// image counts as the pixel itself).
+void RawRenderer::form_phasors(int frequency, double temperature_offset_m) {
+  const CameraIntrinsics& cam = caster_.camera();
+  const int w = static_cast<int>(cam.width), h = static_cast<int>(cam.height);
+  const std::vector<float>& range = caster_.true_range_m();
+  const double k = phase_per_m(calibration_.frequency[frequency].frequency_hz);
+  for (std::size_t i = 0; i < range.size(); ++i) {
+    const float phase = static_cast<float>(k * range[i]);
+    own_re_[i] = amplitude_[i] * std::cos(phase);
+    own_im_[i] = amplitude_[i] * std::sin(phase);
+  }
+  const float wn = static_cast<float>(settings_.footprint_neighbour_weight), w0 = 1.0f - 4.0f * wn;
+  for (int row = 0; row < h; ++row) {
+    for (int col = 0; col < w; ++col) {
+      const int i = row * w + col;
+      const int nb[4] = {row > 0 ? i - w : i, row < h - 1 ? i + w : i, col > 0 ? i - 1 : i,
+                         col < w - 1 ? i + 1 : i};
+      float re = w0 * own_re_[i], im = w0 * own_im_[i], bg = w0 * background_[i];
+      for (int j : nb) {
+        re += wn * own_re_[j];
+        im += wn * own_im_[j];
+        bg += wn * background_[j];
+      }
+      sum_re_[i] = re;
+      sum_im_[i] = im;
+      sum_background_[i] = bg;
+    }
+  }
+  if (settings_.multipath) add_multipath(frequency);
+  // The pixel's own electronics: its fixed pattern, the frequency's offset
+  // and the temperature drift turn the arriving phasor.
+  const float drift = static_cast<float>(k * temperature_offset_m);
+  const float dc = std::cos(drift), ds = std::sin(drift);
+  for (std::size_t i = 0; i < range.size(); ++i) {
+    const float c = fixed_cos_[frequency][i] * dc - fixed_sin_[frequency][i] * ds;
+    const float s = fixed_sin_[frequency][i] * dc + fixed_cos_[frequency][i] * ds;
+    const float re = sum_re_[i] * c - sum_im_[i] * s, im = sum_im_[i] * c + sum_re_[i] * s;
+    sum_re_[i] = re;
+    sum_im_[i] = im;
+  }
+}
+
+// Light that reached this pixel's surface by way of a nearer one close by
+// (a handrail's leg, a box on the wall): for each of eight ring samples 1
+// to 15 cm nearer, a return along camera -> sample's point -> this point
+// -> camera, of the sample's amplitude times the gain / 8.
+void RawRenderer::add_multipath(int frequency) {
+  const CameraIntrinsics& cam = caster_.camera();
+  const int w = static_cast<int>(cam.width), h = static_cast<int>(cam.height);
+  const int ring = settings_.multipath_ring_px;
+  const std::vector<float>& range = caster_.true_range_m();
+  const std::vector<Eigen::Vector3f>& rays = caster_.rays();
+  const double k = phase_per_m(calibration_.frequency[frequency].frequency_hz);
+  const float share = static_cast<float>(settings_.multipath_gain / 8.0);
+  const int dr[8] = {-1, -1, -1, 0, 0, 1, 1, 1}, dc[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
+  for (int row = 0; row < h; ++row) {
+    for (int col = 0; col < w; ++col) {
+      const int i = row * w + col;
+      const float r = range[static_cast<std::size_t>(i)];
+      if (r <= 0.0f) continue;
+      for (int s = 0; s < 8; ++s) {
+        const int rr = row + dr[s] * ring, cc = col + dc[s] * ring;
+        if (rr < 0 || cc < 0 || rr >= h || cc >= w) continue;
+        const int j = rr * w + cc;
+        const float rj = range[static_cast<std::size_t>(j)];
+        if (!(rj > 0.0f && rj > r - 0.15f && rj < r - 0.01f)) continue;
+        const float between =
+            (rays[static_cast<std::size_t>(i)] * r - rays[static_cast<std::size_t>(j)] * rj).norm();
+        const float path = 0.5f * (rj + between + r);
+        const float a = share * amplitude_[static_cast<std::size_t>(j)];
+        const float phase = static_cast<float>(k * path);
+        sum_re_[static_cast<std::size_t>(i)] += a * std::cos(phase);
+        sum_im_[static_cast<std::size_t>(i)] += a * std::sin(phase);
+        sum_background_[static_cast<std::size_t>(i)] +=
+            a / static_cast<float>(settings_.modulation_contrast);
+      }
+    }
+  }
+}
+
+// The four phase steps of one frequency: the correlator sees the summed
+// phasor with the frequency's wiggling, plus the background, ambient and
+// black level; then shot and read noise, quantisation and the ADC's top.
+void RawRenderer::write_samples(int frequency, tof::RawFrame* out, std::uint64_t stream_seed) {
+  const tof::FrequencyCalibration& fc = calibration_.frequency[frequency];
+  const float black = static_cast<float>(calibration_.black_level_dn);
+  const float inv_gain = static_cast<float>(1.0 / calibration_.conversion_gain_e_per_dn);
+  const float read2 = static_cast<float>(calibration_.read_noise_dn * calibration_.read_noise_dn);
+  std::uint16_t* step[4];
+  for (int k = 0; k < 4; ++k) step[k] = out->phase_image(frequency, k);
+  SimRandom rng(stream_seed);
+  const bool noise = settings_.noise;
+  for (std::size_t i = 0; i < amplitude_.size(); ++i) {
+    const float re = sum_re_[i], im = sum_im_[i];
+    const float a = std::sqrt(re * re + im * im);
+    float c1 = a > 0.0f ? re / a : 1.0f, s1 = a > 0.0f ? im / a : 0.0f;
+    // w(phase) from the harmonics' recurrence, then the phasor turned by
+    // it (w is a few hundredths of a radian: the series to w^3 is exact to
+    // 1e-8).
+    float ch = c1, sh = s1, wiggle = 0.0f;
+    for (int hm = 0; hm < tof::kWiggleHarmonics; ++hm) {
+      if (hm > 0) {
+        const float cn = ch * c1 - sh * s1, sn = sh * c1 + ch * s1;
+        ch = cn;
+        sh = sn;
+      }
+      wiggle += static_cast<float>(fc.wiggle_cos_rad[hm]) * ch +
+                static_cast<float>(fc.wiggle_sin_rad[hm]) * sh;
+    }
+    const float cw = 1.0f - 0.5f * wiggle * wiggle, sw = wiggle - wiggle * wiggle * wiggle / 6.0f;
+    const float c = c1 * cw - s1 * sw, s = s1 * cw + c1 * sw;
+    const float base = black + ambient_[i] + sum_background_[i];
+    // Steps 0, 90, 180, 270 deg: cos(phase + k pi / 2).
+    const float mean[4] = {base + a * c, base - a * s, base - a * c, base + a * s};
+    for (int k = 0; k < 4; ++k) {
+      float v = mean[k];
+      if (noise) {
+        const float sigma = std::sqrt(std::max(v - black, 0.0f) * inv_gain + read2);
+        v += sigma * static_cast<float>(rng.normal());
+      }
+      const float q = std::floor(v + 0.5f);
+      step[k][i] =
+          static_cast<std::uint16_t>(std::clamp(q, 0.0f, static_cast<float>(tof::kMaxSampleDn)));
+    }
+  }
+}
+
+// The grey image: an exposure with the illumination off, ambient only.
+void RawRenderer::write_grey(tof::RawFrame* out, std::uint64_t stream_seed) {
+  const float black = static_cast<float>(calibration_.black_level_dn);
+  const float inv_gain = static_cast<float>(1.0 / calibration_.conversion_gain_e_per_dn);
+  const float read2 = static_cast<float>(calibration_.read_noise_dn * calibration_.read_noise_dn);
+  std::uint16_t* grey = out->grey_image();
+  SimRandom rng(stream_seed);
+  for (std::size_t i = 0; i < ambient_.size(); ++i) {
+    float v = black + ambient_[i];
+    if (settings_.noise)
+      v += std::sqrt(ambient_[i] * inv_gain + read2) * static_cast<float>(rng.normal());
+    grey[i] = static_cast<std::uint16_t>(
+        std::clamp(std::floor(v + 0.5f), 0.0f, static_cast<float>(tof::kMaxSampleDn)));
+  }
+}
+
+void RawRenderer::render(const Scene& scene, const Eigen::Isometry3d& T_world_cam, tof::Mode mode,
+                         std::uint32_t max_exposure_us, std::uint64_t seed,
+                         std::uint64_t frame_index, tof::RawFrame* out) {
+  caster_.cast(scene, T_world_cam);
+  const std::uint32_t exposure_us = choose_exposure_us(max_exposure_us);
+  gather_returns(scene, exposure_us);
+  const double temperature_offset_m =
+      calibration_.temperature_drift_m_per_k *
+      (settings_.sensor_temperature_c - calibration_.reference_temperature_c);
+  out->mode = mode;
+  out->frame_id = frame_index;
+  out->exposure_us = exposure_us;
+  out->sensor_temperature_c = static_cast<float>(settings_.sensor_temperature_c);
+  const int frequencies = std::min(tof::frequency_count(mode), calibration_.frequency_count);
+  for (int f = 0; f < frequencies; ++f) {
+    form_phasors(f, temperature_offset_m);
+    write_samples(f, out, mix_seed(seed, frame_index, 20 + static_cast<std::uint64_t>(f)));
+  }
+  write_grey(out, mix_seed(seed, frame_index, 29));
+}
+
+}  // namespace sim_hal
