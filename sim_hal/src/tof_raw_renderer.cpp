@@ -1,6 +1,7 @@
 #include "sim_hal/tof_raw_renderer.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "sim_hal/sim_random.hpp"
@@ -19,6 +20,9 @@ RawRenderer::RawRenderer(const CameraIntrinsics& cam, const ToFSettings& depth_s
                          const RawRenderSettings& settings, const tof::Calibration& calibration)
     : caster_(cam, depth_settings), settings_(settings), calibration_(calibration) {
   const std::size_t n = static_cast<std::size_t>(cam.width) * cam.height;
+  // The raw frame is the Pico Flexx's imager (and the vector passes work
+  // in whole blocks of four pixels).
+  assert(n == tof::kPixels);
   for (int f = 0; f < calibration.frequency_count; ++f) {
     const double k = phase_per_m(calibration.frequency[f].frequency_hz);
     fixed_cos_[f].resize(n);
@@ -32,10 +36,13 @@ RawRenderer::RawRenderer(const CameraIntrinsics& cam, const ToFSettings& depth_s
       }
     }
   }
-  for (std::vector<float>* v : {&amplitude_, &background_, &ambient_, &own_re_, &own_im_, &sum_re_,
-                                &sum_im_, &sum_background_}) {
+  for (std::vector<float>* v :
+       {&amplitude_, &background_, &ambient_, &own_re_, &own_im_, &sum_re_, &sum_im_,
+        &sum_background_, &multipath_amplitude_, &multipath_path_m_, &step_mean_[0], &step_mean_[1],
+        &step_mean_[2], &step_mean_[3]}) {
     v->resize(n);
   }
+  normals_.resize(4 * n);
   sorted_.reserve(n);
 }
 
@@ -103,7 +110,16 @@ void RawRenderer::form_phasors(int frequency, double temperature_offset_m) {
       sum_background_[i] = bg;
     }
   }
-  if (settings_.multipath) add_multipath(frequency);
+  if (settings_.multipath) {
+    for (std::size_t i = 0; i < range.size(); ++i) {
+      const float a = multipath_amplitude_[i];
+      if (a <= 0.0f) continue;
+      const float phase = static_cast<float>(k * multipath_path_m_[i]);
+      sum_re_[i] += a * std::cos(phase);
+      sum_im_[i] += a * std::sin(phase);
+      sum_background_[i] += a / static_cast<float>(settings_.modulation_contrast);
+    }
+  }
   // The pixel's own electronics: its fixed pattern, the frequency's offset
   // and the temperature drift turn the arriving phasor.
   const float drift = static_cast<float>(k * temperature_offset_m);
@@ -120,101 +136,37 @@ void RawRenderer::form_phasors(int frequency, double temperature_offset_m) {
 // Light that reached this pixel's surface by way of a nearer one close by
 // (a handrail's leg, a box on the wall): for each of eight ring samples 1
 // to 15 cm nearer, a return along camera -> sample's point -> this point
-// -> camera, of the sample's amplitude times the gain / 8.
-void RawRenderer::add_multipath(int frequency) {
+// -> camera, of the sample's amplitude times the gain / 8. The samples'
+// returns are merged into one of their total amplitude at their
+// amplitude-weighted mean path (their paths differ by centimetres, a small
+// part of a wavelength), so each frequency adds one phasor.
+void RawRenderer::find_multipath() {
   const CameraIntrinsics& cam = caster_.camera();
   const int w = static_cast<int>(cam.width), h = static_cast<int>(cam.height);
   const int ring = settings_.multipath_ring_px;
   const std::vector<float>& range = caster_.true_range_m();
   const std::vector<Eigen::Vector3f>& rays = caster_.rays();
-  const double k = phase_per_m(calibration_.frequency[frequency].frequency_hz);
   const float share = static_cast<float>(settings_.multipath_gain / 8.0);
   const int dr[8] = {-1, -1, -1, 0, 0, 1, 1, 1}, dc[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
   for (int row = 0; row < h; ++row) {
     for (int col = 0; col < w; ++col) {
-      const int i = row * w + col;
-      const float r = range[static_cast<std::size_t>(i)];
-      if (r <= 0.0f) continue;
-      for (int s = 0; s < 8; ++s) {
+      const std::size_t i = static_cast<std::size_t>(row * w + col);
+      const float r = range[i];
+      float total = 0.0f, weighted_path = 0.0f;
+      for (int s = 0; s < 8 && r > 0.0f; ++s) {
         const int rr = row + dr[s] * ring, cc = col + dc[s] * ring;
         if (rr < 0 || cc < 0 || rr >= h || cc >= w) continue;
-        const int j = rr * w + cc;
-        const float rj = range[static_cast<std::size_t>(j)];
-        if (!(rj > 0.0f && rj > r - 0.15f && rj < r - 0.01f)) continue;
-        const float between =
-            (rays[static_cast<std::size_t>(i)] * r - rays[static_cast<std::size_t>(j)] * rj).norm();
-        const float path = 0.5f * (rj + between + r);
-        const float a = share * amplitude_[static_cast<std::size_t>(j)];
-        const float phase = static_cast<float>(k * path);
-        sum_re_[static_cast<std::size_t>(i)] += a * std::cos(phase);
-        sum_im_[static_cast<std::size_t>(i)] += a * std::sin(phase);
-        sum_background_[static_cast<std::size_t>(i)] +=
-            a / static_cast<float>(settings_.modulation_contrast);
+        const std::size_t j = static_cast<std::size_t>(rr * w + cc);
+        const float rj = range[j];
+        if (!(rj > r - 0.15f && rj < r - 0.01f)) continue;  // fails for no hit (0)
+        const float between = (rays[i] * r - rays[j] * rj).norm();
+        const float a = share * amplitude_[j];
+        total += a;
+        weighted_path += a * 0.5f * (rj + between + r);
       }
+      multipath_amplitude_[i] = total;
+      multipath_path_m_[i] = total > 0.0f ? weighted_path / total : 0.0f;
     }
-  }
-}
-
-// The four phase steps of one frequency: the correlator sees the summed
-// phasor with the frequency's wiggling, plus the background, ambient and
-// black level; then shot and read noise, quantisation and the ADC's top.
-void RawRenderer::write_samples(int frequency, tof::RawFrame* out, std::uint64_t stream_seed) {
-  const tof::FrequencyCalibration& fc = calibration_.frequency[frequency];
-  const float black = static_cast<float>(calibration_.black_level_dn);
-  const float inv_gain = static_cast<float>(1.0 / calibration_.conversion_gain_e_per_dn);
-  const float read2 = static_cast<float>(calibration_.read_noise_dn * calibration_.read_noise_dn);
-  std::uint16_t* step[4];
-  for (int k = 0; k < 4; ++k) step[k] = out->phase_image(frequency, k);
-  SimRandom rng(stream_seed);
-  const bool noise = settings_.noise;
-  for (std::size_t i = 0; i < amplitude_.size(); ++i) {
-    const float re = sum_re_[i], im = sum_im_[i];
-    const float a = std::sqrt(re * re + im * im);
-    float c1 = a > 0.0f ? re / a : 1.0f, s1 = a > 0.0f ? im / a : 0.0f;
-    // w(phase) from the harmonics' recurrence, then the phasor turned by
-    // it (w is a few hundredths of a radian: the series to w^3 is exact to
-    // 1e-8).
-    float ch = c1, sh = s1, wiggle = 0.0f;
-    for (int hm = 0; hm < tof::kWiggleHarmonics; ++hm) {
-      if (hm > 0) {
-        const float cn = ch * c1 - sh * s1, sn = sh * c1 + ch * s1;
-        ch = cn;
-        sh = sn;
-      }
-      wiggle += static_cast<float>(fc.wiggle_cos_rad[hm]) * ch +
-                static_cast<float>(fc.wiggle_sin_rad[hm]) * sh;
-    }
-    const float cw = 1.0f - 0.5f * wiggle * wiggle, sw = wiggle - wiggle * wiggle * wiggle / 6.0f;
-    const float c = c1 * cw - s1 * sw, s = s1 * cw + c1 * sw;
-    const float base = black + ambient_[i] + sum_background_[i];
-    // Steps 0, 90, 180, 270 deg: cos(phase + k pi / 2).
-    const float mean[4] = {base + a * c, base - a * s, base - a * c, base + a * s};
-    for (int k = 0; k < 4; ++k) {
-      float v = mean[k];
-      if (noise) {
-        const float sigma = std::sqrt(std::max(v - black, 0.0f) * inv_gain + read2);
-        v += sigma * static_cast<float>(rng.normal());
-      }
-      const float q = std::floor(v + 0.5f);
-      step[k][i] =
-          static_cast<std::uint16_t>(std::clamp(q, 0.0f, static_cast<float>(tof::kMaxSampleDn)));
-    }
-  }
-}
-
-// The grey image: an exposure with the illumination off, ambient only.
-void RawRenderer::write_grey(tof::RawFrame* out, std::uint64_t stream_seed) {
-  const float black = static_cast<float>(calibration_.black_level_dn);
-  const float inv_gain = static_cast<float>(1.0 / calibration_.conversion_gain_e_per_dn);
-  const float read2 = static_cast<float>(calibration_.read_noise_dn * calibration_.read_noise_dn);
-  std::uint16_t* grey = out->grey_image();
-  SimRandom rng(stream_seed);
-  for (std::size_t i = 0; i < ambient_.size(); ++i) {
-    float v = black + ambient_[i];
-    if (settings_.noise)
-      v += std::sqrt(ambient_[i] * inv_gain + read2) * static_cast<float>(rng.normal());
-    grey[i] = static_cast<std::uint16_t>(
-        std::clamp(std::floor(v + 0.5f), 0.0f, static_cast<float>(tof::kMaxSampleDn)));
   }
 }
 
@@ -224,6 +176,7 @@ void RawRenderer::render(const Scene& scene, const Eigen::Isometry3d& T_world_ca
   caster_.cast(scene, T_world_cam);
   const std::uint32_t exposure_us = choose_exposure_us(max_exposure_us);
   gather_returns(scene, exposure_us);
+  if (settings_.multipath) find_multipath();
   const double temperature_offset_m =
       calibration_.temperature_drift_m_per_k *
       (settings_.sensor_temperature_c - calibration_.reference_temperature_c);

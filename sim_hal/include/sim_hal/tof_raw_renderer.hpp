@@ -85,8 +85,9 @@ class RawRenderer {
   std::uint32_t choose_exposure_us(std::uint32_t max_exposure_us);
   void gather_returns(const Scene& scene, double exposure_us);
   void form_phasors(int frequency, double temperature_offset_m);
-  void add_multipath(int frequency);
+  void find_multipath();
   void write_samples(int frequency, tof::RawFrame* out, std::uint64_t stream_seed);
+  void draw_normals(std::size_t count, std::uint64_t stream_seed);
   void write_grey(tof::RawFrame* out, std::uint64_t stream_seed);
 
   DepthRenderer caster_;
@@ -99,6 +100,13 @@ class RawRenderer {
   // DN), its phasor, and the summed phasor and background of its footprint.
   std::vector<float> amplitude_, background_, ambient_;
   std::vector<float> own_re_, own_im_, sum_re_, sum_im_, sum_background_;
+  // Per frame: the multipath return each pixel gets (amplitude in DN, 0 for
+  // none, and its one-way equivalent path), found once for all frequencies.
+  std::vector<float> multipath_amplitude_, multipath_path_m_;
+  // The four phase steps' mean levels (DN) and the noise draws, four per
+  // pixel, of the frequency being written.
+  std::vector<float> step_mean_[4];
+  std::vector<float> normals_;
   std::vector<float> sorted_;
 };
 
