@@ -56,15 +56,15 @@ Eigen::Isometry3d hil_start_pose(const sim_hal::Scenario& scenario,
 
 HilWorld::HilWorld(LcmHub& hub, const sim_hal::Scenario& scenario, const AppConfig& config,
                    const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed,
-                   const hal::Clock& clock)
+                   const hal::Clock& clock, const HilSensorParams& sensors)
     : hub_(hub),
       scenario_(scenario),
       config_(config),
       clock_(clock),
       servos_({config.servos.tilt_id, config.servos.pan_id}, seed),
       camera_(scenario, clock, sim_hal::SimulatedCamera::Pacing::kRealTime),
-      pose_pub_(hub, channel::kRobotPose),
-      flyer_(T_world_body_start, sim_hal::FlyerParams{}, seed) {
+      flyer_(T_world_body_start, sim_hal::FlyerParams{}, seed),
+      sensors_(hub, sensors, seed) {
   // The target: the handrail nearest the start's line of sight.
   const Eigen::Isometry3d T_world_cam = T_world_body_start * config.T_body_cam;
   double best = std::numeric_limits<double>::infinity();
@@ -164,27 +164,38 @@ double HilWorld::gripper_to_bar_m() const {
 }
 
 HilStats HilWorld::stats() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return stats_;
+  HilStats s;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    s = stats_;
+  }
+  s.localization = sensors_.score();
+  return s;
 }
 
 void HilWorld::physics_tick() {
   const std::int64_t now = clock_.now_us();
   const double dt = last_tick_us_ > 0 ? 1e-6 * static_cast<double>(now - last_tick_us_) : 0.0;
   last_tick_us_ = now;
-  physics_step(dt, now);
-  // ROBOT_POSE at half the physics rate: 50 Hz.
-  if (++ticks_ % 2 != 0) return;
+  bool locked_before = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    pose_msg_.utime = now;
-    to_msg(flyer_.pose(), &pose_msg_.T_world_body);
-    for (int k = 0; k < 3; ++k) {
-      pose_msg_.velocity_mps[k] = flyer_.velocity()[k];
-      pose_msg_.angular_velocity_rps[k] = flyer_.angular_velocity()[k];
-    }
+    locked_before = stats_.locked;
   }
-  pose_pub_.publish(pose_msg_);
+  physics_step(dt, now);
+  Eigen::Isometry3d T;
+  Eigen::Vector3d v, w;
+  bool locked = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    T = flyer_.pose();
+    v = flyer_.velocity();
+    w = flyer_.angular_velocity();
+    locked = stats_.locked;
+  }
+  // The truth at half the physics rate (50 Hz), the sensors every tick.
+  sensors_.on_tick(now, T, v, w, ++ticks_ % 2 == 0);
+  if (locked && !locked_before) sensors_.mark_grasp();
 }
 
 void HilWorld::physics_step(double dt_s, std::int64_t now_us) {

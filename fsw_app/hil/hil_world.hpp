@@ -6,7 +6,9 @@
 // real drivers); and the contact between gripper and handrail: fingers that
 // close within reach of the bar stop on it, and a closed grip holds the
 // robot to the bar, the joints then turning the body about it.
-// It publishes ROBOT_POSE and follows BODY_VELOCITY_COMMAND over LCM.
+// It follows BODY_VELOCITY_COMMAND over LCM; its navigation sensors
+// (hil_sensors.hpp) publish IMU_SAMPLE, GP_POSE and, for scoring only,
+// TRUTH_POSE: the robot's pose (ROBOT_POSE) is the localization task's.
 #include <Eigen/Geometry>
 #include <atomic>
 #include <cstdint>
@@ -17,8 +19,8 @@
 #include "fsw_app/lcm_hub.hpp"
 #include "fsw_app/periodic_thread.hpp"
 #include "hal/clock.hpp"
+#include "hil_sensors.hpp"
 #include "hrp/body_velocity_command_t.hpp"
-#include "hrp/robot_pose_t.hpp"
 #include "sim_hal/flyer.hpp"
 #include "sim_hal/scenario.hpp"
 #include "sim_hal/sim_gripper.hpp"
@@ -38,13 +40,14 @@ struct HilStats {
   bool locked = false;          // the gripper holds the robot to a bar
   double grasp_error_m = -1.0;  // grasp point to bar centre line when the grip closed
   std::int64_t locked_at_us = 0;
+  LocalizationScore localization;  // the filter's and the GP's errors
 };
 
 class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTamper {
  public:
   HilWorld(LcmHub& hub, const sim_hal::Scenario& scenario, const AppConfig& config,
-           const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed,
-           const hal::Clock& clock);
+           const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed, const hal::Clock& clock,
+           const HilSensorParams& sensors = HilSensorParams{});
   ~HilWorld() override;
 
   bool start(std::string* error);  // the devices' ptys and the physics thread
@@ -64,6 +67,7 @@ class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTa
   // corrupt (wrong size, dropped by the camera task).
   void occlude_until(std::int64_t t_us) { occluded_until_us_ = t_us; }
   void corrupt_next_frames(int n) { corrupt_frames_ = n; }
+  HilSensors& sensors() { return sensors_; }
 
   Eigen::Isometry3d body_pose() const;
   // The grasp point's distance from the target bar's centre line now.
@@ -89,7 +93,6 @@ class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTa
   sim_hal::SimGripperBoard gripper_;
   sim_hal::SimulatedCamera camera_;
   Mailbox<hrp::body_velocity_command_t> command_box_;
-  Publisher<hrp::robot_pose_t> pose_pub_;
   mutable std::mutex mutex_;  // flyer, stats, lock
   sim_hal::SimFlyer flyer_;
   HilStats stats_;
@@ -98,7 +101,7 @@ class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTa
   std::atomic<int> corrupt_frames_{0};
   std::int64_t last_tick_us_ = 0;  // the physics thread's
   std::uint64_t ticks_ = 0;
-  hrp::robot_pose_t pose_msg_{};
+  HilSensors sensors_;
   PeriodicThread physics_;  // last: stopped before the members it uses go
 };
 

@@ -14,7 +14,8 @@ struct TaskName {
 constexpr TaskName kTaskNames[] = {{"camera", kCameraTask},
                                    {"estimator", kEstimatorTask},
                                    {"arm", kArmTask},
-                                   {"manager", kManagerTask}};
+                                   {"manager", kManagerTask},
+                                   {"localizer", kLocalizerTask}};
 
 int usage_error(const std::string& what) {
   std::fprintf(stderr, "fsw_app: %s (see fsw_app --help)\n", what.c_str());
@@ -86,14 +87,15 @@ std::string task_names(unsigned tasks) {
 void print_usage(std::FILE* out) {
   std::fprintf(out,
                "usage: fsw_app [options]\n"
-               "The handrail perching flight software: camera, estimator, arm and perch\n"
-               "manager tasks on LCM.\n\n"
+               "The handrail perching flight software: camera, estimator, arm, perch\n"
+               "manager and localizer tasks on LCM.\n\n"
                "  --config FILE         configuration (default fsw_app/config/fsw_app.json)\n"
                "  --hal sim|real        simulated HAL (default) or the robot's devices\n"
                "  --scenario FILE       sim: the scene (sim_hal/scenarios/*.json)\n"
                "  --seed N              sim: start pose and disturbances (default 1)\n"
                "  --tasks LIST          the tasks this process runs, comma separated, from\n"
-               "                        camera, estimator, arm, manager (default all). An\n"
+               "                        camera, estimator, arm, manager, localizer (default\n"
+               "                        all). An\n"
                "                        estimator without the camera reads DEPTH_FRAME; a\n"
                "                        camera without the estimator publishes it\n"
                "  --publish-frames      put every depth frame on DEPTH_FRAME (0.73 MB each),\n"
@@ -109,7 +111,10 @@ void print_usage(std::FILE* out) {
                "  --summary-json FILE   write the summary as one JSON object\n"
                "  --fault NAME[@S]      sim: inject a fault S seconds (default 1) after the\n"
                "                        approach starts: servo-silent, gripper-overcurrent,\n"
-               "                        occlude (1 s), corrupt-frames (5 frames)\n"
+               "                        occlude (1 s), corrupt-frames (5 frames), imu-silent\n"
+               "                        (0.5 s), gp-jump (the GP pose 20 cm off from then on)\n"
+               "  --gp-error M,DEG      sim: the general-purpose localizer's bias, metres and\n"
+               "                        degrees (default 0.03,1); its direction turns slowly\n"
                "  --handrail iss|round  the handrail kind to look for (default from the config)\n"
                "  --budget-us N         the estimator's frame budget (default: the use case's\n"
                "                        frame period); a tiny one shows the over-budget path\n"
@@ -142,11 +147,11 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
       continue;
     }
     static const char* const kWithValue[] = {
-        "--config",         "--hal",           "--scenario",  "--seed",
-        "--lcm-url",        "--timeout",       "--duration",  "--log",
-        "--summary-json",   "--fault",         "--budget-us", "--arm-port",
-        "--gripper-port",   "--camera-replay", "--handrail",  "--tasks",
-        "--frames-from-log"};
+        "--config",          "--hal",           "--scenario",  "--seed",
+        "--lcm-url",         "--timeout",       "--duration",  "--log",
+        "--summary-json",    "--fault",         "--budget-us", "--arm-port",
+        "--gripper-port",    "--camera-replay", "--handrail",  "--tasks",
+        "--frames-from-log", "--gp-error"};
     bool known = false;
     for (const char* k : kWithValue) known = known || a == k;
     if (!known) return usage_error("unknown option \"" + a + "\"");
@@ -167,7 +172,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
       std::string bad;
       if (!parse_tasks(v, &o->tasks, &bad)) {
         return usage_error("--tasks: unknown task \"" + bad +
-                           "\" (camera, estimator, arm, manager or all)");
+                           "\" (camera, estimator, arm, manager, localizer or all)");
       }
       tasks_given = true;
     }
@@ -184,6 +189,15 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
       if (*end || !(s > 0)) return usage_error(a + " wants seconds > 0, not \"" + v + "\"");
       (a == "--timeout" ? o->timeout_s : o->duration_s) = s;
     }
+    if (a == "--gp-error") {
+      const double m = std::strtod(v.c_str(), &end);
+      const double deg = *end == ',' ? std::strtod(end + 1, &end) : -1.0;
+      if (*end || !(m >= 0.0 && m <= 1.0) || !(deg >= 0.0 && deg <= 30.0)) {
+        return usage_error("--gp-error wants METRES,DEGREES (0..1, 0..30), not \"" + v + "\"");
+      }
+      o->gp_bias_m = m;
+      o->gp_bias_deg = deg;
+    }
     if (a == "--budget-us") {
       o->budget_us = std::strtol(v.c_str(), &end, 10);
       if (*end || o->budget_us <= 0) return usage_error("--budget-us wants microseconds > 0");
@@ -197,7 +211,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
         if (*end || t < 0) return usage_error("--fault " + v + ": the time after @ is seconds");
       }
       if (name != "servo-silent" && name != "gripper-overcurrent" && name != "occlude" &&
-          name != "corrupt-frames") {
+          name != "corrupt-frames" && name != "imu-silent" && name != "gp-jump") {
         return usage_error("unknown fault \"" + name + "\"");
       }
       o->faults.push_back({name, t});

@@ -9,13 +9,14 @@
 
 namespace fsw_app {
 
-// The tasks a process runs (a bit each); by default all four, one thread each.
+// The tasks a process runs (a bit each); by default all five, one thread each.
 enum TaskBits : unsigned {
   kCameraTask = 1u << 0,
   kEstimatorTask = 1u << 1,
   kArmTask = 1u << 2,
   kManagerTask = 1u << 3,
-  kAllTasks = kCameraTask | kEstimatorTask | kArmTask | kManagerTask,
+  kLocalizerTask = 1u << 4,
+  kAllTasks = kCameraTask | kEstimatorTask | kArmTask | kManagerTask | kLocalizerTask,
 };
 
 struct Options {
@@ -36,6 +37,8 @@ struct Options {
   long budget_us = -1;
   std::string arm_port, gripper_port, camera_replay, handrail;
   bool quiet = false;
+  // sim: the general-purpose localizer's bias (size; it turns slowly).
+  double gp_bias_m = 0.03, gp_bias_deg = 1.0;
 
   bool runs(unsigned task) const { return (tasks & task) != 0; }
   // The simulated world (flyer, rendered camera, devices on ptys) is built

@@ -78,6 +78,26 @@ bool check_message(const hrp::robot_pose_t& m, InputReject* why) {
   v.pose(m.T_world_body, kMaxWorldPosition_m);
   v.norm_at_most(m.velocity_mps, 3, kMaxSpeed_mps);
   v.norm_at_most(m.angular_velocity_rps, 3, kMaxAngularSpeed_rps);
+  v.count_within(m.source, hrp::robot_pose_t::SOURCE_UNKNOWN, hrp::robot_pose_t::SOURCE_TRUTH);
+  for (const auto& row : m.pose_covariance) v.finite(row, 6);
+  return v.ok();
+}
+
+bool check_message(const hrp::imu_sample_t& m, InputReject* why) {
+  Verdict v(why);
+  v.count_within(m.utime, 0, INT64_MAX);
+  v.count_within(m.seq, 0, INT64_MAX);
+  v.finite(m.omega_body_radps, 3);
+  v.finite(m.a_body_mps2, 3);
+  return v.ok();
+}
+
+bool check_message(const hrp::gp_pose_t& m, InputReject* why) {
+  Verdict v(why);
+  v.count_within(m.utime, 0, INT64_MAX);
+  v.count_within(m.capture_utime, 0, INT64_MAX);
+  v.pose(m.T_world_body, kMaxWorldPosition_m);
+  for (const auto& row : m.covariance) v.finite(row, 6);
   return v.ok();
 }
 

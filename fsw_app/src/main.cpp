@@ -25,6 +25,7 @@
 #include "app_options.hpp"
 #include "arm_io/ax12_joints.hpp"
 #include "arm_io/gripper_actuator.hpp"
+#include "arm_links.hpp"
 #include "dynamixel/bus.hpp"
 #include "frame_receive_buffer.hpp"
 #include "fsw_app/app_config.hpp"
@@ -35,6 +36,7 @@
 #include "fsw_app/input_health.hpp"
 #include "fsw_app/lcm_depth_camera.hpp"
 #include "fsw_app/lcm_hub.hpp"
+#include "fsw_app/localization_task.hpp"
 #include "fsw_app/log_player.hpp"
 #include "fsw_app/perch_manager.hpp"
 #include "gripper/gripper_board.hpp"
@@ -64,56 +66,6 @@ constexpr std::int32_t kStopSequence = 2;
 // How long a safe stop may take: an ABORT during the approach opens, backs
 // off and stows (about 10 s in the simulator).
 constexpr double kSafeStopLimit_s = 30.0;
-
-// The arm task's links: the two serial ports and the drivers on them.
-struct ArmLinks {
-  hal::LinuxSerialPort servo_serial, gripper_serial;
-  std::unique_ptr<dynamixel::Bus> bus;
-  std::unique_ptr<gripper::GripperBoard> board;
-  std::unique_ptr<arm_io::Ax12Joints> joints;
-  std::unique_ptr<arm_io::GripperActuator> gripper;
-};
-
-// Opens the ports and starts the drivers; false (reported) when a port
-// will not open.
-bool open_arm_links(const fsw_app::AppConfig& cfg, const std::string& servo_port,
-                    const std::string& gripper_port, bool sim, const hal::Clock& clock,
-                    ArmLinks* links) {
-  std::string error;
-  if (links->servo_serial.open(servo_port, cfg.ports.servo_baud, &error) !=
-      hal::SerialStatus::kOk) {
-    std::fprintf(stderr, "fsw_app: servo bus: %s\n", error.c_str());
-    return false;
-  }
-  if (links->gripper_serial.open(gripper_port, cfg.ports.gripper_baud, &error) !=
-      hal::SerialStatus::kOk) {
-    std::fprintf(stderr, "fsw_app: gripper board: %s\n", error.c_str());
-    return false;
-  }
-  dynamixel::BusConfig bus_cfg;
-  bus_cfg.return_delay_us = cfg.ports.servo_return_delay_us;
-  // The simulated devices are threads of this process on a host that may
-  // be shared (a virtual machine with steal time): their replies get a
-  // wider margin than the wire needs, and the board a longer serial
-  // timeout, so that a stalled host does not pass for a failed line.
-  bus_cfg.margin_us = sim ? 100000 : cfg.ports.servo_margin_us;
-  links->bus = std::make_unique<dynamixel::Bus>(links->servo_serial, clock, bus_cfg);
-  links->board = std::make_unique<gripper::GripperBoard>(
-      links->gripper_serial, clock, 2, sim ? 120000 : cfg.ports.gripper_margin_us);
-  const std::uint32_t serial_timeout_ms =
-      sim ? std::max<std::uint32_t>(cfg.ports.gripper_serial_timeout_ms, 2000)
-          : cfg.ports.gripper_serial_timeout_ms;
-  if (const gripper::Status s = links->board->set_timeout_ms(static_cast<int>(serial_timeout_ms));
-      s != gripper::Status::kOk) {
-    std::fprintf(stderr,
-                 "fsw_app: gripper board on %s: could not set its serial timeout to %u ms (%s); "
-                 "it keeps its own (500 ms after a reset)\n",
-                 gripper_port.c_str(), serial_timeout_ms, gripper::to_string(s));
-  }
-  links->joints = std::make_unique<arm_io::Ax12Joints>(*links->bus, cfg.servos);
-  links->gripper = std::make_unique<arm_io::GripperActuator>(*links->board);
-  return true;
-}
 
 // Frames of 0.73 MB arrive over udpm as a dozen datagrams at once: with the
 // kernel's default receive buffer (about 200 kB) most frames lose one. An
@@ -212,7 +164,7 @@ int main(int argc, char** argv) {
     }
     world = std::make_unique<fsw_app::HilWorld>(
         hub, scenario, cfg, fsw_app::hil_start_pose(scenario, cfg.T_body_cam, opt.seed), opt.seed,
-        clock);
+        clock, fsw_app::hil_sensor_params(opt.gp_bias_m, opt.gp_bias_deg));
     if (!world->start(&error)) {
       std::fprintf(stderr, "fsw_app: simulated devices: %s\n", error.c_str());
       return 1;
@@ -271,9 +223,9 @@ int main(int argc, char** argv) {
   }
 
   // --- The arm's drivers on the ports.
-  ArmLinks links;
+  fsw_app::ArmLinks links;
   if (opt.runs(fsw_app::kArmTask) &&
-      !open_arm_links(cfg, servo_port, gripper_port, sim, clock, &links)) {
+      !fsw_app::open_arm_links(cfg, servo_port, gripper_port, sim, clock, &links)) {
     return 1;
   }
 
@@ -322,6 +274,11 @@ int main(int argc, char** argv) {
     manager = std::make_unique<fsw_app::PerchManager>(hub, cfg.approach, p_body_grasp, clock,
                                                       cfg.manager_rate_hz);
   }
+  std::unique_ptr<fsw_app::LocalizationTask> localizer;
+  if (opt.runs(fsw_app::kLocalizerTask)) {
+    localizer = std::make_unique<fsw_app::LocalizationTask>(
+        hub, fsw_app::localization_task_config(cfg), clock);
+  }
   std::unique_ptr<fsw_app::LogPlayer> player;
   if (!opt.frames_from_log.empty()) {
     player = std::make_unique<fsw_app::LogPlayer>(hub, opt.frames_from_log, clock, max_w, max_h);
@@ -353,6 +310,7 @@ int main(int argc, char** argv) {
 
   run_signals::mark_tasks_running();
   hub.start();
+  if (localizer) localizer->start();
   if (estimator_task) estimator_task->start();
   if (arm_task) arm_task->start();
   if (manager) manager->start();
@@ -443,6 +401,7 @@ int main(int argc, char** argv) {
       approach_started = true;
 #ifdef HRP_WITH_SIM
       approach_s = t;
+      if (world) world->sensors().begin_scoring();
 #endif
     }
 #ifdef HRP_WITH_SIM
@@ -461,6 +420,10 @@ int main(int argc, char** argv) {
         world->occlude_until(clock.now_us() + 1000000);
       } else if (f == "corrupt-frames") {
         world->corrupt_next_frames(5);
+      } else if (f == "imu-silent") {
+        world->sensors().silence_imu_until(clock.now_us() + 500000);
+      } else if (f == "gp-jump") {
+        world->sensors().jump_gp(Eigen::Vector3d(0.0, 0.2, 0.0));
       }
     }
 #endif
@@ -518,6 +481,11 @@ int main(int argc, char** argv) {
     estimator_task->stop();
     estimator_task->publish_health();
   }
+  if (localizer) {
+    localizer->stop();
+    localizer->publish_health();
+    summary.localizer = fsw_app::localizer_report(*localizer);
+  }
   input_health.publish(clock.now_us());
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   hub.stop();
@@ -528,6 +496,7 @@ int main(int argc, char** argv) {
 #ifdef HRP_WITH_SIM
   if (world) {
     summary.grasp_error_m = world->stats().grasp_error_m;
+    summary.localization = world->stats().localization;
     world->stop();
   }
 #endif

@@ -63,6 +63,37 @@ void print_inputs(const RunSummary& s, std::FILE* out) {
   }
 }
 
+// The filter's error against the truth beside the GP localizer's, and what
+// the filter made of its inputs.
+void print_localization(const RunSummary& s, std::FILE* out) {
+  if (s.localization) {
+    const LocalizationScore& l = *s.localization;
+    const PoseErrorStats &f = l.filter_approach, &g = l.gp_approach;
+    std::fprintf(out,
+                 "  pose error          approach: filter mean %.1f mm max %.1f mm, %.2f / %.2f "
+                 "deg; GP mean %.1f mm max %.1f mm, %.2f / %.2f deg\n",
+                 1e3 * f.mean_m, 1e3 * f.max_m, f.mean_deg, f.max_deg, 1e3 * g.mean_m,
+                 1e3 * g.max_m, g.mean_deg, g.max_deg);
+    if (l.at_grasp) {
+      std::fprintf(out,
+                   "                      at grasp: filter %.1f mm %.2f deg; GP %.1f mm %.2f deg\n",
+                   1e3 * l.filter_grasp_m, l.filter_grasp_deg, 1e3 * l.gp_grasp_m, l.gp_grasp_deg);
+    }
+  }
+  if (s.localizer) {
+    const LocalizerReport& r = *s.localizer;
+    std::fprintf(out,
+                 "  localizer           IMU %u propagated, %u gaps bridged, %u lost, %u "
+                 "rejected; GP %u accepted, %u gated, %u jump, %u relocalized; handrail %u + "
+                 "%u NE accepted, %u gated, %u other rejections, %u features gated%s\n",
+                 r.imu_propagated, r.imu_gaps_bridged, r.imu_gaps_lost, r.imu_rejected,
+                 r.gp_accepted, r.gp_rejected_gate, r.gp_rejected_jump, r.gp_relocalized,
+                 r.handrail_accepted, r.handrail_no_end_accepted, r.handrail_rejected_gate,
+                 r.handrail_rejected_other, r.features_gated,
+                 r.map_valid ? "; handrail map held" : "");
+  }
+}
+
 void print_log(const Options& opt, const RunSummary& s, std::FILE* out) {
   if (opt.log.empty()) return;
   std::fprintf(out, "  LCM log             %s (%lld messages", opt.log.c_str(),
@@ -117,6 +148,7 @@ void print_perch_summary(const Options& opt, const RunSummary& s, std::FILE* out
   }
   if (s.gripper_retries)
     std::fprintf(out, "  gripper board       %u retries\n", *s.gripper_retries);
+  print_localization(s, out);
   print_inputs(s, out);
   print_log(opt, s, out);
 }
@@ -163,6 +195,57 @@ void write_inputs_json(const hrp::input_health_t& in, std::FILE* f) {
   std::fprintf(f, "}");
 }
 
+void write_errors_json(const char* name, const PoseErrorStats& e, std::FILE* f) {
+  std::fprintf(f,
+               "\"%s\": {\"samples\": %lld, \"mean_m\": %.5f, \"max_m\": %.5f, \"mean_deg\": %.3f, "
+               "\"max_deg\": %.3f}",
+               name, static_cast<long long>(e.samples), e.mean_m, e.max_m, e.mean_deg, e.max_deg);
+}
+
+// "localization": {"approach": {"filter": {...}, "gp": {...}}, "grasp": {...},
+// "filter": {counts}}; absent parts are null.
+void write_localization_json(const RunSummary& s, std::FILE* f) {
+  std::fprintf(f, "\"localization\": {");
+  if (s.localization) {
+    const LocalizationScore& l = *s.localization;
+    std::fprintf(f, "\"approach\": {");
+    write_errors_json("filter", l.filter_approach, f);
+    std::fprintf(f, ", ");
+    write_errors_json("gp", l.gp_approach, f);
+    std::fprintf(f,
+                 "}, \"grasp\": {\"filter_m\": %.5f, \"filter_deg\": %.3f, \"gp_m\": %.5f, "
+                 "\"gp_deg\": %.3f}, \"filter_poses\": %lld, \"non_filter_poses\": %lld, ",
+                 l.filter_grasp_m, l.filter_grasp_deg, l.gp_grasp_m, l.gp_grasp_deg,
+                 static_cast<long long>(l.filter_poses),
+                 static_cast<long long>(l.non_filter_poses));
+  } else {
+    std::fprintf(f, "\"approach\": null, \"grasp\": null, ");
+  }
+  if (s.localizer) {
+    const LocalizerReport& r = *s.localizer;
+    std::fprintf(f,
+                 "\"filter\": {\"initialized\": %s, \"map_valid\": %s, \"imu_propagated\": %u, "
+                 "\"imu_gaps_bridged\": %u, \"imu_gaps_lost\": %u, \"imu_rejected\": %u, "
+                 "\"imu_seq_gaps\": %llu, \"gp_accepted\": %u, \"gp_rejected_gate\": %u, "
+                 "\"gp_rejected_jump\": %u, \"gp_relocalized\": %u, \"gp_rejected_other\": %u, "
+                 "\"handrail_accepted\": %u, \"handrail_no_end_accepted\": %u, "
+                 "\"handrail_rejected_gate\": %u, \"handrail_rejected_other\": %u, "
+                 "\"handrail_unusable\": %llu, \"features_gated\": %u, \"map_resets\": %u, "
+                 "\"poses_published\": %llu}",
+                 r.initialized ? "true" : "false", r.map_valid ? "true" : "false", r.imu_propagated,
+                 r.imu_gaps_bridged, r.imu_gaps_lost, r.imu_rejected,
+                 static_cast<unsigned long long>(r.task.imu_seq_gaps), r.gp_accepted,
+                 r.gp_rejected_gate, r.gp_rejected_jump, r.gp_relocalized, r.gp_rejected_other,
+                 r.handrail_accepted, r.handrail_no_end_accepted, r.handrail_rejected_gate,
+                 r.handrail_rejected_other,
+                 static_cast<unsigned long long>(r.task.handrail_unusable), r.features_gated,
+                 r.map_resets, static_cast<unsigned long long>(r.task.poses_published));
+  } else {
+    std::fprintf(f, "\"filter\": null");
+  }
+  std::fprintf(f, "}, ");
+}
+
 }  // namespace
 
 bool write_summary_json(const Options& opt, const RunSummary& s, const std::string& path) {
@@ -200,6 +283,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
                static_cast<long long>(s.frames_published), s.log_failure.c_str(),
                static_cast<long long>(s.log_lost), s.stop.stopped ? "true" : "false", s.stop.signal,
                s.stop.at_rest ? "true" : "false");
+  write_localization_json(s, f);
   write_inputs_json(s.inputs, f);
   std::fprintf(f, "}\n");
   return std::fclose(f) == 0;

@@ -10,6 +10,8 @@
 
 #include "app_options.hpp"
 #include "dynamixel/bus.hpp"
+#include "fsw_app/localization_score.hpp"
+#include "fsw_app/localization_task.hpp"
 #include "fsw_app/log_player.hpp"
 #include "fsw_app/periodic_thread.hpp"
 #include "hrp/arm_state_t.hpp"
@@ -55,6 +57,8 @@ struct RunSummary {
   std::int64_t frames_published = -1;  // DEPTH_FRAME messages this process sent
   hrp::input_health_t inputs{};        // this process's checked channels
   StopReport stop;
+  std::optional<LocalizationScore> localization;  // the simulated world's scoring
+  std::optional<LocalizerReport> localizer;       // a localization task here
 };
 
 // "SIGINT", "SIGTERM".

@@ -180,7 +180,8 @@ void test_estimator_over_budget(void**) {
 // The tasks in two processes, as on a robot whose estimator runs on another
 // computer: this one the simulated world with the camera and arm tasks
 // (frames out on DEPTH_FRAME), the other the estimator and perch manager
-// (frames in over udpm). They meet only on LCM, and the robot perches.
+// (frames in over udpm) with the localizer (IMU and GP poses in over udpm).
+// They meet only on LCM, and the robot perches.
 void test_tasks_split_across_two_processes_perch(void**) {
   if (!g_udpm) {
     std::printf("  NOTE: needs udpm between processes; not run here\n");
@@ -191,9 +192,9 @@ void test_tasks_split_across_two_processes_perch(void**) {
     const std::string url = "udpm://239.255.76.67:" + std::to_string(g_port) + "?ttl=0";
     const std::string other_summary = "/tmp/hrp_hil_split_" + std::to_string(getpid()) + ".json";
     const pid_t other = testing_support::spawn_program(
-        g_program,
-        {"--config", source("fsw_app/config/fsw_app.json"), "--tasks", "estimator,manager",
-         "--quiet", "--lcm-url", url, "--summary-json", other_summary});
+        g_program, {"--config", source("fsw_app/config/fsw_app.json"), "--tasks",
+                    "estimator,manager,localizer", "--quiet", "--lcm-url", url, "--summary-json",
+                    other_summary});
     o = run("approach-iss", {"--seed", "8", "--tasks", "camera,arm"});  // on the same port
     kill(other, SIGTERM);  // it runs until told to stop, then writes its summary
     assert_int_equal(testing_support::wait_for_exit(other), 0);

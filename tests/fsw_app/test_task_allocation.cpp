@@ -2,7 +2,9 @@
 // the estimator task processing recorded frames (ring, detector, tracker,
 // HANDRAIL_ESTIMATE) and the arm task's cycle (command and approach
 // mailboxes, perch sequence, ARM_STATE), and frames crossing LCM (the
-// frame publisher and the LCM frame source), counted on the calling thread,
+// frame publisher and the LCM frame source) and the localization task's
+// cycle (IMU samples, GP poses and handrail estimates into the filter,
+// ROBOT_POSE out), counted on the calling thread,
 // where LCM's publish runs too. The hub uses udpm on loopback as in flight;
 // where the host has no multicast route the test says so and uses memq,
 // whose publish copies each message (its allocations then belong to LCM's
@@ -20,6 +22,8 @@
 #include "fsw_app/estimator_task.hpp"
 #include "fsw_app/frame_publisher.hpp"
 #include "fsw_app/lcm_depth_camera.hpp"
+#include "fsw_app/localization_task.hpp"
+#include "fsw_app/msg_convert.hpp"
 #include "test_data.hpp"
 
 namespace {
@@ -148,6 +152,79 @@ void test_frames_cross_lcm_without_allocating(void**) {
   expect_none(allocations, "frame publisher and LCM frame source, 30 frames of 0.73 MB");
 }
 
+// At rest 0.8 m in front of a handrail on the wall x = 0, facing it: IMU
+// samples at 62.5 Hz, a GP pose each second, a BE handrail estimate at
+// 5 Hz, the task cycling at 100 Hz; delivery (the dispatcher's work) is not
+// counted, the cycles are.
+void test_localization_task_cycles_without_allocating(void**) {
+  fsw_app::LcmHub hub(g_url);
+  assert_true(hub.good());
+  hal::ManualClock clock(1000000);
+  fsw_app::LocalizationTaskConfig cfg;
+  fsw_app::LocalizationTask task(hub, cfg, clock);
+  fsw_app::Publisher<hrp::imu_sample_t> imu(hub, fsw_app::channel::kImuSample);
+  fsw_app::Publisher<hrp::gp_pose_t> gp(hub, fsw_app::channel::kGpPose);
+  fsw_app::Publisher<hrp::handrail_estimate_t> handrail(hub, fsw_app::channel::kHandrailEstimate);
+  Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
+  T_world_body.translation() << 0.8, 0.0, -0.06;
+  Eigen::Isometry3d T_world_handrail = Eigen::Isometry3d::Identity();
+  T_world_handrail.translation() << 0.061, 0.0, 0.0;
+  const Eigen::Isometry3d T_cam_handrail =
+      (T_world_body * cfg.filter.T_body_cam).inverse() * T_world_handrail;
+  hrp::imu_sample_t s{};
+  hrp::gp_pose_t g{};
+  fsw_app::to_msg(T_world_body, &g.T_world_body);
+  for (int r = 0; r < 6; ++r) g.covariance[r][r] = r < 3 ? 4e-4 : 1e-4;
+  hrp::handrail_estimate_t e{};
+  e.state = hrp::handrail_estimate_t::STATE_BE;
+  e.num_ends = 2;
+  fsw_app::to_msg(T_cam_handrail, &e.T_cam_handrail);
+  fsw_app::to_msg(cfg.filter.T_body_cam * T_cam_handrail, &e.T_body_handrail);
+  fsw_app::to_msg(Eigen::Isometry3d::Identity(), &e.T_body_target);
+  const auto deliver = [&] {
+    const long so_far = alloc_counter::disarm();
+    while (hub.handle(5) > 0) {
+    }
+    alloc_counter::arm();
+    alloc_counter::t_allocations = so_far;
+  };
+  std::int64_t next_imu_us = clock.now_us();
+  long allocations = 0;
+  alloc_counter::arm();
+  for (int k = 0; k < 600; ++k) {
+    clock.advance_us(10000);
+    const std::int64_t now = clock.now_us();
+    bool sent = false;
+    if (now >= next_imu_us) {
+      s.utime = now;
+      ++s.seq;
+      imu.publish(s);
+      next_imu_us += 16000;
+      sent = true;
+    }
+    if (k % 100 == 50) {
+      g.utime = now;
+      g.capture_utime = now - 150000;
+      gp.publish(g);
+      sent = true;
+    }
+    if (k % 20 == 10 && k > 150) {
+      e.utime = now;
+      e.capture_utime = now - 100000;
+      ++e.frame_id;
+      handrail.publish(e);
+      sent = true;
+    }
+    if (sent) deliver();
+    task.step();
+  }
+  allocations = alloc_counter::disarm();
+  assert_true(task.filter().initialized());
+  assert_true(task.filter().handrail_map().valid);
+  assert_true(task.counters().poses_published > 300);
+  expect_none(allocations, "localization task, 600 cycles");
+}
+
 }  // namespace
 
 int main() {
@@ -156,6 +233,7 @@ int main() {
       cmocka_unit_test(test_estimator_task_processes_frames_without_allocating),
       cmocka_unit_test(test_arm_task_cycles_without_allocating),
       cmocka_unit_test(test_frames_cross_lcm_without_allocating),
+      cmocka_unit_test(test_localization_task_cycles_without_allocating),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

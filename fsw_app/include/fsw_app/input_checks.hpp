@@ -12,7 +12,9 @@
 #include "hrp/arm_state_t.hpp"
 #include "hrp/body_velocity_command_t.hpp"
 #include "hrp/estimator_health_t.hpp"
+#include "hrp/gp_pose_t.hpp"
 #include "hrp/handrail_estimate_t.hpp"
+#include "hrp/imu_sample_t.hpp"
 #include "hrp/perch_command_t.hpp"
 #include "hrp/robot_pose_t.hpp"
 
@@ -64,6 +66,11 @@ bool check_message(const hrp::arm_state_t& m, InputReject* why);
 bool check_message(const hrp::approach_status_t& m, InputReject* why);
 bool check_message(const hrp::body_velocity_command_t& m, InputReject* why);
 bool check_message(const hrp::estimator_health_t& m, InputReject* why);
+// IMU samples and GP poses: finite and well formed; whether a rate, a
+// specific force or a covariance is plausible is the filter's judgement
+// (it rejects and counts by its own status).
+bool check_message(const hrp::imu_sample_t& m, InputReject* why);
+bool check_message(const hrp::gp_pose_t& m, InputReject* why);
 
 // Decodes `size` bytes into *scratch and checks them. *scratch is the
 // receiver's aside copy: what it holds after a rejection is not to be used.

@@ -224,6 +224,11 @@ inline constexpr const char* kEstimatorHealth = "ESTIMATOR_HEALTH";
 inline constexpr const char* kRobotPose = "ROBOT_POSE";
 inline constexpr const char* kBodyVelocityCommand = "BODY_VELOCITY_COMMAND";
 inline constexpr const char* kDepthFrame = "DEPTH_FRAME";
+inline constexpr const char* kImuSample = "IMU_SAMPLE";
+inline constexpr const char* kGpPose = "GP_POSE";
+inline constexpr const char* kLocalizationHealth = "LOCALIZATION_HEALTH";
+// The simulator's true pose: for scoring only, no robot-side task reads it.
+inline constexpr const char* kTruthPose = "TRUTH_POSE";
 }  // namespace channel
 
 }  // namespace fsw_app

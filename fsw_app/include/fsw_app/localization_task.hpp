@@ -1,0 +1,109 @@
+#pragma once
+// The localization task: the error-state EKF (estimator/localization) fed
+// from LCM, publishing the robot's pose the other tasks fly on.
+//   in:  IMU_SAMPLE (every sample, a fixed queue of 32: 0.5 s at 62.5 Hz),
+//        GP_POSE (every pose, a queue of 4), HANDRAIL_ESTIMATE (the newest)
+//   out: ROBOT_POSE with the filter's pose, velocity, covariance and source
+//        FILTER, after every cycle in which the filter's time advanced;
+//        LOCALIZATION_HEALTH once a second.
+// One cycle (100 Hz): the queued IMU samples in order, then the GP poses,
+// then a new handrail estimate (the filter applies each at its capture
+// time), then the pose. Samples missing by the IMU's counter are counted;
+// the filter bridges or flags the gap by its own rule. Before the filter is
+// initialised (its first GP pose) nothing is published on ROBOT_POSE. The
+// filter and every message are built once: a cycle allocates nothing.
+// step() is the cycle without the thread, for tests in lock step.
+#include <cstdint>
+#include <memory>
+
+#include "estimator/localization/localization_filter.hpp"
+#include "fsw_app/app_config.hpp"
+#include "fsw_app/handrail_measurement.hpp"
+#include "fsw_app/lcm_hub.hpp"
+#include "fsw_app/periodic_thread.hpp"
+#include "hal/clock.hpp"
+#include "hrp/gp_pose_t.hpp"
+#include "hrp/handrail_estimate_t.hpp"
+#include "hrp/imu_sample_t.hpp"
+#include "hrp/localization_health_t.hpp"
+#include "hrp/robot_pose_t.hpp"
+
+namespace fsw_app {
+
+struct LocalizationTaskConfig {
+  estimator::localization::LocalizationConfig filter;
+  HandrailFeatureModel handrail;
+  double rate_hz = 100.0;
+};
+
+struct LocalizationTaskCounters {
+  std::uint64_t imu_in = 0, gp_in = 0, handrail_in = 0;
+  std::uint64_t imu_seq_gaps = 0;  // samples missing by the IMU's counter
+  std::uint64_t imu_queue_overflows = 0;
+  std::uint64_t handrail_unusable = 0;  // NH, deadline, nothing in view
+  std::uint64_t poses_published = 0;
+};
+
+// What the run summary reports of the task: the filter's verdicts on its
+// inputs, summed over the reasons that matter.
+struct LocalizerReport {
+  LocalizationTaskCounters task;
+  std::uint32_t imu_propagated = 0, imu_gaps_bridged = 0, imu_gaps_lost = 0, imu_rejected = 0;
+  std::uint32_t gp_accepted = 0, gp_rejected_gate = 0, gp_rejected_jump = 0, gp_relocalized = 0,
+                gp_rejected_other = 0;
+  std::uint32_t handrail_accepted = 0, handrail_no_end_accepted = 0, handrail_rejected_gate = 0,
+                handrail_rejected_other = 0, handrail_map_sightings = 0;
+  std::uint32_t features_gated = 0, map_resets = 0;
+  bool initialized = false, map_valid = false;
+};
+
+class LocalizationTask {
+ public:
+  LocalizationTask(LcmHub& hub, const LocalizationTaskConfig& cfg, const hal::Clock& clock);
+  ~LocalizationTask();
+  void start();
+  void stop();
+  // One cycle: inputs into the filter, ROBOT_POSE out.
+  void step();
+  void publish_health();
+
+  const estimator::localization::LocalizationFilter& filter() const { return *filter_; }
+  LocalizationTaskCounters counters() const;
+  const hrp::robot_pose_t& last_pose() const { return pose_; }
+
+ private:
+  void take_handrail(const hrp::handrail_estimate_t& e);
+  void fill_pose();
+
+  LcmHub& hub_;
+  LocalizationTaskConfig cfg_;
+  const hal::Clock& clock_;
+  std::unique_ptr<estimator::localization::LocalizationFilter> filter_;
+  std::unique_ptr<estimator::localization::HandrailMeasurement> measurement_;
+  MessageQueue<hrp::imu_sample_t, 32> imu_queue_;
+  MessageQueue<hrp::gp_pose_t, 4> gp_queue_;
+  Mailbox<hrp::handrail_estimate_t> handrail_box_;
+  Publisher<hrp::robot_pose_t> pose_pub_;
+  Publisher<hrp::localization_health_t> health_pub_;
+  hrp::imu_sample_t imu_{};
+  hrp::gp_pose_t gp_{};
+  hrp::handrail_estimate_t handrail_{};
+  hrp::robot_pose_t pose_{};
+  hrp::localization_health_t health_{};
+  std::uint64_t handrail_seen_ = 0;
+  std::int64_t last_imu_seq_ = -1;
+  std::int64_t published_t_us_ = 0;
+  Eigen::Vector3d last_omega_body_ = Eigen::Vector3d::Zero();
+  std::int64_t last_health_us_ = 0;
+  std::atomic<std::uint64_t> imu_in_{0}, gp_in_{0}, handrail_in_{0}, imu_seq_gaps_{0},
+      handrail_unusable_{0}, poses_published_{0};
+  PeriodicThread thread_;  // last: stopped before the members it uses go
+};
+
+// The task's configuration from the application's: the camera mount and
+// the handrail's geometry.
+LocalizationTaskConfig localization_task_config(const AppConfig& cfg);
+// After stop().
+LocalizerReport localizer_report(const LocalizationTask& task);
+
+}  // namespace fsw_app
