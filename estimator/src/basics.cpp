@@ -60,10 +60,24 @@ const char* validate(const DetectorConfig& c) {
     return "beam_length_max_ratio";
   if (!(c.end_search_m > 0.0f)) return "end_search_m";
   if (!(c.front_height_tolerance_m > 0.0f)) return "front_height_tolerance_m";
+  if (c.mount_accept_inliers == 0) return "mount_accept_inliers";
   if (c.max_width == 0 || c.max_height == 0 || c.max_width > Workspace::kMaxWidth ||
       c.max_height > 4096)
     return "max_width";
   if (c.budget_us < 0) return "budget_us";
+  if (!(c.mount_search_m >= 0.0f && c.mount_search_m <= 0.3f)) return "mount_search_m";
+  if (!(c.mount_step_m >= 0.0f && c.mount_step_m <= 0.1f)) return "mount_step_m";
+  if (!(c.mount_min_fraction > 0.0f && c.mount_min_fraction < 1.0f)) return "mount_min_fraction";
+  if (c.max_mount_hypotheses == 0 || c.max_mount_hypotheses > kMaxMountHypotheses) {
+    return "max_mount_hypotheses";
+  }
+  if (c.handrail_type_count > kMaxHandrailTypes) return "handrail_types";
+  for (std::uint32_t k = 0; k < c.handrail_type_count; ++k) {
+    const float length = c.handrail_types[k].bar_length_m;
+    if (!(length > 0.05f && length < 3.0f) || c.handrail_types[k].name == nullptr) {
+      return "handrail_types";
+    }
+  }
   return nullptr;
 }
 

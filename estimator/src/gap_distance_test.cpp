@@ -49,7 +49,10 @@ Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* d
   const Floats4 widen = 2.0f * (positive < cap ? positive : cap);
   const Floats4 abs_s = s < zero ? -s : s;
   const Ints4 on_plane = valid & (abs_s < g.plane_inlier_m);
-  const Ints4 on_wall = valid & (abs_s < g.wall_tolerance_m);
+  // "On the wall" for the cross test's probes means not raised off it: a
+  // probe beside a bar on a rack wall lands on a face below the bar's seat
+  // track, or in a gap between racks, as often as on the mount surface.
+  const Ints4 on_wall = valid & (s < g.wall_tolerance_m);
   const Ints4 in_gap = valid & (s >= g.gap_lo_m - widen) & (s <= g.gap_hi_m + widen);
   constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap,
                          kWall = kFlagWall;  // the enum as the lanes' type

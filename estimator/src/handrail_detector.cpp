@@ -6,12 +6,16 @@
 
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
+#include "estimator/handrail_types.hpp"
 #include "estimator/line_estimation.hpp"
+#include "estimator/mount_surfaces.hpp"
 #include "estimator/plane_estimation.hpp"
 
 namespace estimator {
 namespace {
 constexpr float kQuarterPi = 0.78539816f;
+// The most the pixels' noise widens the front-height test.
+constexpr float kMaxNoiseWidening_m = 0.006f;
 }  // namespace
 
 std::int64_t SteadyTimeSource::now_us() const {
@@ -90,6 +94,37 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   return out;
 }
 
+// The bar-front-height test, against the surfaces in view rather than the
+// one being searched: the search's mount only has to be near enough for the
+// bar's pixels to pass the windows of the tests before it, but its front
+// face must stand a handrail's height above a surface that is there (or a
+// seat track on one). The line is moved onto that mount. The tolerance
+// widens with the pixels' noise, since the front face is the mode of noisy
+// heights (at 1.2 m the noise is near a centimetre).
+bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexList& inliers,
+                                     CenterLine* line) const {
+  double noise_sum = 0.0;
+  for (std::int32_t i : inliers) {
+    const float noise = cloud.points[i].noise_m;
+    noise_sum += noise > 0.0f && noise < 0.05f ? noise : 0.0f;  // NaN counts 0
+  }
+  const float mean_noise =
+      inliers.empty() ? 0.0f : static_cast<float>(noise_sum / static_cast<double>(inliers.size()));
+  const float tolerance =
+      cfg_.front_height_tolerance_m + std::fmin(0.5f * mean_noise, kMaxNoiseWidening_m);
+  if (strict_mount_) {
+    line->mount_offset_m = search_mount_m_;
+    return bar_front_height_test(cfg_, *line);
+  }
+  const float front_m = line->front_height_m + search_mount_m_;
+  float mount_m = 0.0f;
+  if (!find_mount_under_bar(mounts_, cfg_, front_m, tolerance, &mount_m)) return false;
+  line->point += (mount_m - search_mount_m_) * wall_.normal;
+  line->front_height_m = front_m - mount_m;
+  line->mount_offset_m = mount_m;
+  return true;
+}
+
 LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
                                                const LineModel& candidate, const IndexList& points,
                                                LineModel* refined, IndexList& inliers,
@@ -101,22 +136,18 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   if (!estimate_center_line(cloud, cfg_, wall_, inliers, ws_, line)) {
     return LineVerdict::kNoCenterLine;
   }
-  if (!bar_front_height_test(cfg_, *line)) {
-    return LineVerdict::kWrongHeight;
-  }
+  if (!seat_on_mount(cloud, inliers, line)) return LineVerdict::kWrongHeight;
   detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, ends, end_t);
   // The beam-length check of Algorithm 1 applies in full only when both
-  // ends are seen; a bar that runs out of view need only be long enough
-  // not to be clutter, and never longer than a handrail.
-  const float length_m = cfg_.handrail.bar_length_m;
+  // ends are seen, against every known length; a bar that runs out of view
+  // need only be long enough not to be clutter, and never longer than the
+  // longest handrail.
   const float extent = end_t[1] - end_t[0];
   if (ends[0] && ends[1]) {
-    const bool ok = extent >= cfg_.beam_length_min_ratio * length_m &&
-                    extent <= cfg_.beam_length_max_ratio * length_m;
-    return ok ? LineVerdict::kAccepted : LineVerdict::kBeamLength;
+    return beam_length_matches(cfg_, extent) ? LineVerdict::kAccepted : LineVerdict::kBeamLength;
   }
   if (extent < cfg_.min_visible_length_m) return LineVerdict::kTooShort;
-  if (extent > cfg_.beam_length_max_ratio * length_m) return LineVerdict::kTooLong;
+  if (extent > cfg_.beam_length_max_ratio * longest_handrail_m(cfg_)) return LineVerdict::kTooLong;
   return LineVerdict::kAccepted;
 }
 
@@ -146,14 +177,94 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     out->status = DetectStatus::kNoPlane;
     return;
   }
-  wall_ = plane.plane;
   out->counts.plane_inliers = plane.inliers;
   if (over_budget(start_us)) {
     out->status = DetectStatus::kDeadlineMissed;
     return;
   }
 
+  // First the dominant plane as the mount, exactly as on a flat wall (the
+  // front height measured from it alone). Where that finds the handrail,
+  // nothing else runs.
+  wall_ = plane.plane;
+  search_mount_m_ = 0.0f;
+  strict_mount_ = true;
   out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
+  HandrailDetection first = *out;
+  search_on_mount(cloud, start_us, &first);
+  first.counts.mounts_tried = 1;
+  const bool strong =
+      first.status == DetectStatus::kFound && first.inliers >= cfg_.mount_accept_inliers;
+  if (strong || first.status == DetectStatus::kDeadlineMissed || over_budget(start_us)) {
+    *out = first;
+    return;
+  }
+
+  // Then the other surfaces in view, from the distances that pass wrote:
+  // each mount in turn, best first. A handrail found with at least
+  // mount_accept_inliers line inliers ends the search; a weaker one (a
+  // fragment, or a far bar) is kept while the other mounts are tried, and
+  // the best supported of those found wins: on a wrong mount the real bar
+  // fails the height tests, while a short piece of clutter may pass them.
+  // A frame with none reports what the dominant plane's search found (its
+  // status and counts), as on a flat wall.
+  mounts_ = find_mount_hypotheses(cloud, cfg_, ws_);
+  strict_mount_ = false;
+  const MountHypotheses& mounts = mounts_;
+  first.counts.mount_hypotheses = mounts.count;
+  // A weak find on the dominant plane competes with the others.
+  HandrailDetection best = first;
+  constexpr std::uint32_t kDominant = kMaxMountHypotheses;
+  std::uint32_t tried = 1, best_k = kDominant, last_k = kDominant;
+  for (std::uint32_t k = 0; k < mounts.count; ++k) {
+    // The dominant plane was searched above; on it a bar whose front stands
+    // a seat track higher is found through the mount a step above it.
+    if (std::fabs(mounts.offset_m[k]) < kSameMountM) continue;
+    HandrailDetection attempt = first;
+    ++tried;
+    search_mount(cloud, plane.plane, mounts.offset_m[k], start_us, &attempt);
+    last_k = k;
+    if (attempt.status == DetectStatus::kDeadlineMissed) {
+      *out = attempt;
+      return;
+    }
+    if (attempt.status == DetectStatus::kFound &&
+        (best.status != DetectStatus::kFound || attempt.inliers > best.inliers)) {
+      best = attempt;
+      best_k = k;
+      if (attempt.inliers >= cfg_.mount_accept_inliers) break;
+    }
+    if (over_budget(start_us)) break;
+  }
+  if (best.status == DetectStatus::kFound) {
+    // The workspace (the debug pictures, the flags) shows the last mount
+    // searched; search the winner again if that was another.
+    if (best_k != last_k) {
+      strict_mount_ = best_k == kDominant;
+      HandrailDetection again = first;
+      search_mount(cloud, plane.plane, best_k == kDominant ? 0.0f : mounts.offset_m[best_k],
+                   start_us, &again);
+    }
+    *out = best;
+  } else {
+    *out = first;
+  }
+  out->counts.mount_hypotheses = mounts.count;
+  out->counts.mounts_tried = tried;
+}
+
+void HandrailDetector::search_mount(const OrganizedCloud& cloud, const Plane& dominant,
+                                    float offset_m, std::int64_t start_us, HandrailDetection* out) {
+  out->mount_offset_m = offset_m;
+  search_mount_m_ = offset_m;
+  wall_ = dominant;
+  wall_.d -= offset_m;
+  gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
+  search_on_mount(cloud, start_us, out);
+}
+
+void HandrailDetector::search_on_mount(const OrganizedCloud& cloud, std::int64_t start_us,
+                                       HandrailDetection* out) {
   cross_point_test(cloud, cfg_, wall_, scale_, ws_);
   side_width_test(cloud, cfg_, scale_, ws_);
   out->counts.gap = static_cast<std::uint32_t>(ws_.gap.size());
@@ -230,6 +341,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     return;
   }
   const CenterLine& line = lines[chosen];
+  out->mount_offset_m = line.mount_offset_m;
   const IndexList& inliers = ws_.line[chosen];
   for (std::int32_t i : inliers) ws_.flags[i] |= kFlagLine;
   out->counts.line = static_cast<std::uint32_t>(inliers.size());
@@ -243,6 +355,14 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   out->state = handrail_state(out->end_seen);
   out->visible_length_m = end_t[chosen][1] - end_t[chosen][0];
   out->beam_length_m = out->state == HandrailState::kBothEnds ? out->visible_length_m : 0.0f;
+  if (out->state == HandrailState::kBothEnds) {
+    out->handrail_type = match_handrail_type(cfg_, out->beam_length_m);
+    if (out->handrail_type >= 0) {
+      const HandrailType& type = cfg_.handrail_types[out->handrail_type];
+      out->handrail_type_name = type.name;
+      out->length_m = type.bar_length_m;
+    }
+  }
   // Both ends seen: the centre is midway between them. Otherwise the middle
   // of what is visible (the paper's Tr2); the tracker refines it over frames.
   const float t_center = 0.5f * (end_t[chosen][0] + end_t[chosen][1]);

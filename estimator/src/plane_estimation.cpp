@@ -83,6 +83,45 @@ bool refit_plane(const float* x, const float* y, const float* z, std::size_t m,
   return plane_from_moments(moments, plane);
 }
 
+// On a rack wall the inliers of the RANSAC plane hold two or three faces a
+// centimetre or two apart, and their least-squares plane is tilted between
+// them; the mount hypotheses measure heights along its normal across the
+// whole view, where a tenth of a degree is millimetres. So the plane is fit
+// once more to the most populated surface alone: the mode of the sample's
+// distances (2 mm bins), and the points within kTightHalfWidthM of it.
+constexpr float kModeBinM = 0.002f;
+constexpr int kModeBins = 32;  // +-3.2 cm: the RANSAC inlier band and more
+constexpr float kTightHalfWidthM = 0.005f;
+
+bool refit_on_main_surface(const float* x, const float* y, const float* z, std::size_t m,
+                           Plane* plane) {
+  std::uint32_t count[kModeBins] = {};
+  const float a = plane->normal.x(), b = plane->normal.y(), c = plane->normal.z(), d = plane->d;
+  const float lo = -0.5f * kModeBins * kModeBinM;
+  for (std::size_t k = 0; k < m; ++k) {
+    const float bin = (a * x[k] + b * y[k] + c * z[k] + d - lo) / kModeBinM;
+    if (bin >= 0.0f && bin < static_cast<float>(kModeBins)) ++count[static_cast<int>(bin)];
+  }
+  int best = -1;
+  std::uint32_t best_count = 0;
+  for (int k = 1; k + 1 < kModeBins; ++k) {
+    const std::uint32_t n = count[k - 1] + count[k] + count[k + 1];
+    if (n > best_count) {
+      best_count = n;
+      best = k;
+    }
+  }
+  if (best < 0) return false;
+  Plane shifted = *plane;
+  shifted.d -= lo + (static_cast<float>(best) + 0.5f) * kModeBinM;
+  std::uint32_t support = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (!refit_plane(x, y, z, m, kTightHalfWidthM, &shifted, &support) || support < 3) return false;
+  }
+  *plane = shifted;
+  return true;
+}
+
 }  // namespace
 
 bool fit_plane_least_squares(const OrganizedCloud& cloud, const std::int32_t* indices,
@@ -157,6 +196,10 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
   for (int pass = 0; pass < 2; ++pass) {
     if (!refit_plane(rx, ry, rz, m_refit, cfg.plane_inlier_m, &best, &support)) return result;
   }
+  // Kept only if it succeeds: with too few points near the mode (a very
+  // noisy far wall) the broad fit stands.
+  Plane tight = best;
+  if (refit_on_main_surface(rx, ry, rz, m_refit, &tight) && tight.d > 0.0f) best = tight;
   if (best.d < 0.0f) return result;
   const float fraction = static_cast<float>(support) / static_cast<float>(m_refit);
   if (fraction < cfg.plane_min_inlier_fraction) return result;

@@ -19,6 +19,19 @@ void test_config_file(void**) {
   assert_near(cfg.handrail.bar_width_m, 0.035, 1e-6);
   assert_int_equal(cfg.line_iterations, 120);
   assert_near(cfg.gripper_angle_rad, M_PI / 2, 1e-6);
+  assert_int_equal(cfg.handrail_type_count, 5);  // every ISS length unless told
+
+  estimator::DetectorConfig two;
+  assert_true(formats::parse_detector_config(
+      "{\"handrail_types\": [\"30 in\", \"module rail\"], \"mount_search_m\": 0.04}", "t.json",
+      &two, &error));
+  assert_int_equal(two.handrail_type_count, 2);
+  assert_string_equal(two.handrail_types[0].name, "30 in");
+  assert_near(two.handrail_types[1].bar_length_m, 1.0, 1e-6);
+  assert_near(two.mount_search_m, 0.04, 1e-6);
+  estimator::DetectorConfig none;
+  assert_true(formats::parse_detector_config("{\"handrail_types\": []}", "n.json", &none, &error));
+  assert_int_equal(none.handrail_type_count, 0);
 
   struct Case {
     const char* text;
@@ -32,6 +45,17 @@ void test_config_file(void**) {
        "c.json:2: \"handrail.kind\" must be \"iss\" or \"round\""},
       {"{\n \"min_line_inliers\": 2.5\n}",
        "c.json:2: \"min_line_inliers\" must be a non-negative integer"},
+      {"{\n \"handrail_types\": [\"21.5 in\", \"9 in\"]\n}",
+       "c.json:2: \"handrail_types\": unknown handrail type \"9 in\"; known: \"8.5 in\", "
+       "\"21.5 in\", \"30 in\", \"41.5 in\", \"module rail\""},
+      {"{\n \"handrail_types\": [\"30 in\",\n \"30 in\"]\n}",
+       "c.json:3: \"handrail_types\": \"30 in\" is listed twice"},
+      {"{\n \"handrail_types\": \"30 in\"\n}",
+       "c.json:2: \"handrail_types\" must be an array of type names (\"8.5 in\", \"21.5 in\", "
+       "\"30 in\", \"41.5 in\", \"module rail\")"},
+      {"{\n \"max_mount_hypotheses\": 9\n}",
+       "c.json:2: \"max_mount_hypotheses\" is out of range or inconsistent with the other "
+       "settings"},
       {"{\n\n",
        "c.json:3: syntax error while parsing object key - unexpected end of input; expected "
        "string literal"},
@@ -48,9 +72,10 @@ void test_detection_json(void**) {
   estimator::HandrailDetection d;
   d.status = estimator::DetectStatus::kNoLine;
   d.processing_time_us = 1250;
-  assert_string_equal(tools::detection_to_json("a\"b.pcd", d).c_str(),
-                      "{\"frame\":\"a\\\"b.pcd\",\"state\":\"NH\",\"reason\":\"NO_LINE\",\"first_"
-                      "line\":\"ACCEPTED\",\"time_ms\":1.250}");
+  assert_string_equal(
+      tools::detection_to_json("a\"b.pcd", d).c_str(),
+      "{\"frame\":\"a\\\"b.pcd\",\"state\":\"NH\",\"reason\":\"NO_LINE\",\"first_"
+      "line\":\"ACCEPTED\",\"mounts\":{\"found\":0,\"tried\":0},\"time_ms\":1.250}");
   d.status = estimator::DetectStatus::kFound;
   d.state = estimator::HandrailState::kOneEnd;
   d.end_seen[1] = true;
@@ -60,6 +85,20 @@ void test_detection_json(void**) {
   assert_true(s.find("\"state\":\"OE\"") != std::string::npos);
   assert_true(s.find("\"ends\":[[1.00000,2.00000,3.00000]]") != std::string::npos);
   assert_true(s.find("\"target_rotation\":[[1.00000,0.00000,0.00000],") != std::string::npos);
+  // One end seen: the length is unknown, no type is named.
+  assert_true(s.find("\"length_m\":0.0000") != std::string::npos);
+  assert_true(s.find("\"iss_type\":null") != std::string::npos);
+  // End to end, matched to a type, on a seat track 1.3 cm proud.
+  d.state = estimator::HandrailState::kBothEnds;
+  d.end_seen[0] = true;
+  d.handrail_type = 1;
+  d.handrail_type_name = "21.5 in";
+  d.length_m = 0.531f;
+  d.visible_length_m = 0.525f;
+  d.mount_offset_m = 0.013f;
+  const std::string be = tools::detection_to_json("f.pcd", d);
+  assert_true(be.find("\"visible_length_m\":0.5250,\"length_m\":0.5310,\"mount_offset_m\":0.0130,"
+                      "\"iss_type\":\"21.5 in\"") != std::string::npos);
 }
 
 void test_image_text_and_png(void**) {

@@ -53,12 +53,23 @@ std::string detection_to_json(const std::string& frame, const estimator::Handrai
       s += vec(d.R_cam_target.row(r).transpose());
     }
     s += "],\"inliers\":" + std::to_string(d.inliers);
+    char lengths[160];
+    std::snprintf(lengths, sizeof lengths,
+                  ",\"visible_length_m\":%.4f,\"length_m\":%.4f,\"mount_offset_m\":%.4f",
+                  d.visible_length_m, d.length_m, d.mount_offset_m);
+    s += lengths;
+    // The ISS type a bar seen end to end matches; null when its ends are not
+    // both in view (its length is then unknown) or it matches none.
+    s += ",\"iss_type\":";
+    s += d.handrail_type_name ? "\"" + escape(d.handrail_type_name) + "\"" : std::string("null");
   } else {
     s += ",\"reason\":\"" + std::string(to_string(d.status)) + "\"";
     if (d.status == estimator::DetectStatus::kNoLine) {
       s += ",\"first_line\":\"" + std::string(to_string(d.counts.first_rejection)) + "\"";
     }
   }
+  s += ",\"mounts\":{\"found\":" + std::to_string(d.counts.mount_hypotheses) +
+       ",\"tried\":" + std::to_string(d.counts.mounts_tried) + "}";
   s += ",\"time_ms\":" + std::string(time_ms) + "}";
   return s;
 }

@@ -198,13 +198,16 @@ int main(int argc, char** argv) {
     // flat rack like a flat wall) stay out of the rack walls' figures.
     if (r.surface == "rack wall" && r.name.find("control") != std::string::npos)
       r.surface = "rack wall (control)";
-    // The flight default unless asked: the detector looks for a 0.55 m bar.
+    // The flight default unless asked: the detector knows every ISS length
+    // (and reports a 0.55 m bar's pose and target as before).
     const float length_m = true_length && !sc.scene.handrails.empty()
                                ? static_cast<float>(sc.scene.handrails[0].bar_length_m)
                                : 0.55f;
     estimator::DetectorConfig cfg;
     cfg.handrail =
         round ? estimator::paper_round_handrail(length_m) : estimator::iss_handrail(length_m);
+    // Told the length, the detector looks for that one, not every ISS type.
+    if (true_length) cfg.handrail_type_count = 0;
     cfg.gripper_angle_rad = static_cast<float>(sc.gripper_angle_deg * M_PI / 180.0);
     estimator::HandrailDetector proposed(cfg), basic(cfg);
     sim_hal::DepthRenderer renderer(cam, sc.sensor);

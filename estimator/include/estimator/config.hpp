@@ -20,8 +20,26 @@ HandrailGeometry paper_round_handrail(float bar_length_m = 0.55f);
 // 6.1 cm off the wall.
 HandrailGeometry iss_handrail(float bar_length_m = 0.55f);
 
+// A handrail length the detector knows: a bar seen end to end is matched to
+// the nearest one (the beam-length check of Algorithm 1, per length).
+struct HandrailType {
+  const char* name;  // static storage: "8.5 in", "module rail", ...
+  float bar_length_m;
+};
+constexpr std::uint32_t kMaxHandrailTypes = 8;
+constexpr std::uint32_t kMaxMountHypotheses = 6;
+
 struct DetectorConfig {
   HandrailGeometry handrail = iss_handrail();
+  // The lengths accepted when both ends are seen. None (count 0): the one
+  // length handrail.bar_length_m. The default: the station's four ISS
+  // handrails (bars 0.20, 0.53, 0.76, 1.04 m) and the 1 m module rail.
+  HandrailType handrail_types[kMaxHandrailTypes] = {{"8.5 in", 0.202f},
+                                                    {"21.5 in", 0.531f},
+                                                    {"30 in", 0.762f},
+                                                    {"41.5 in", 1.040f},
+                                                    {"module rail", 1.000f}};
+  std::uint32_t handrail_type_count = 5;
 
   // Input gating.
   float min_range_m = 0.10f;
@@ -33,6 +51,22 @@ struct DetectorConfig {
   float plane_inlier_m = 0.015f;
   float plane_min_inlier_fraction = 0.20f;
 
+  // Mount surfaces. The surface a handrail stands on need not be the
+  // dominant plane: on a rack wall it is a seat track (1.3 cm proud of its
+  // rack's face) between faces 1 to 5 cm apart. The faces are parallel, so
+  // the surfaces in view are the peaks of a histogram of distances along
+  // the dominant plane's normal; each peak within mount_search_m of the
+  // plane is a mount, and so is a seat track mount_step_m above it. Mounts
+  // are tried best first (the most pixels where that mount puts the bar's
+  // front face), at most max_mount_hypotheses, until one holds a handrail.
+  float mount_search_m = 0.052f;
+  float mount_step_m = 0.013f;
+  float mount_min_fraction = 0.01f;  // of the valid pixels, for a surface peak
+  std::uint32_t max_mount_hypotheses = 3;
+  // A handrail found with this many line inliers ends the search over
+  // mounts; with fewer, the other mounts are searched too.
+  std::uint32_t mount_accept_inliers = 120;
+
   // Gap distance test (eq. 1): the bar's visible surface lies between
   // offset - depth/2 and offset + depth/2 from the wall, widened by this
   // margin plus twice the pixel's noise.
@@ -40,7 +74,7 @@ struct DetectorConfig {
 
   // Cross point test (eqs. 2, 3). d_c = sqrt(2) b_D + delta.
   float cross_delta_m = 0.035f;
-  float wall_tolerance_m = 0.02f;  // d_g,min: "on the wall"
+  float wall_tolerance_m = 0.02f;  // d_g,min: "on the wall" (or anywhere below it)
 
   // Side width test (eq. 4) on the raised span through the pixel.
   float side_width_min_ratio = 0.6f;  // x bar width

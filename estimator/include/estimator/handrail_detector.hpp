@@ -7,6 +7,7 @@
 #include "estimator/config.hpp"
 #include "estimator/handrail_pose.hpp"
 #include "estimator/line_estimation.hpp"
+#include "estimator/mount_surfaces.hpp"
 #include "estimator/organized_cloud.hpp"
 #include "estimator/pixel_scale.hpp"
 #include "estimator/random.hpp"
@@ -50,10 +51,20 @@ class HandrailDetector {
   bool over_budget(std::int64_t start_us) const;
   void clear_flags(const OrganizedCloud& cloud);
   void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
+  // The search on the mount offset_m from the dominant plane: wall_ set to
+  // it, the gap distance pass against it, then search_on_mount().
+  void search_mount(const OrganizedCloud& cloud, const Plane& dominant, float offset_m,
+                    std::int64_t start_us, HandrailDetection* out);
+  // The paper's tests and line search against the current wall_ (one mount
+  // surface), after the gap distance pass has run against it.
+  void search_on_mount(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
   // Cluster, front height, centre line, ends and length of one line.
   LineVerdict verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
                                const IndexList& points, LineModel* refined, IndexList& inliers,
                                CenterLine* line, bool ends[2], float end_t[2]);
+  // The front-height test against the surfaces in view; moves the line
+  // onto the mount it finds.
+  bool seat_on_mount(const OrganizedCloud& cloud, const IndexList& inliers, CenterLine* line) const;
   // Takes a rejected line's points out of the search.
   void remove_rejected_line(LineVerdict verdict, const LineModel& refined, const CenterLine& line,
                             IndexList& active);
@@ -66,8 +77,11 @@ class HandrailDetector {
   const TimeSource* time_;
   Workspace ws_;
   Random rng_;
-  Plane wall_;
+  Plane wall_;  // the mount being searched (the dominant plane, shifted)
   PixelScale scale_;
+  MountHypotheses mounts_;       // of the current frame
+  float search_mount_m_ = 0.0f;  // wall_'s offset from the dominant plane
+  bool strict_mount_ = true;     // the front height from wall_ alone (the dominant plane)
 };
 
 }  // namespace estimator

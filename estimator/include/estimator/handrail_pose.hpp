@@ -19,6 +19,9 @@ struct CenterLine {
   float t_min_m = 0.0f;  // visible extent of the inliers along the axis
   float t_max_m = 0.0f;
   float front_height_m = 0.0f;  // the bar's front face, from the wall
+  // The mount surface found under the bar (seat_on_mount()): its distance
+  // from the dominant plane along the normal.
+  float mount_offset_m = 0.0f;
 };
 
 // Eq. 5: x = wall normal, z = line direction projected onto the wall,

@@ -54,6 +54,8 @@ struct StageCounts {
   std::uint32_t side = 0;
   std::uint32_t line = 0;
   std::uint32_t line_searches = 0;                       // Algorithm 2 runs
+  std::uint32_t mount_hypotheses = 0;                    // mounts found
+  std::uint32_t mounts_tried = 0;                        // searched, best first
   LineVerdict first_rejection = LineVerdict::kAccepted;  // of the best-supported line
 };
 
@@ -70,6 +72,16 @@ struct HandrailDetection {
   bool end_seen[2] = {false, false};  // [0] at -axis, [1] at +axis
   float visible_length_m = 0.0f;      // extent of the line inliers
   float beam_length_m = 0.0f;         // between ends when both are seen
+  // Both ends seen: the known handrail type nearest the beam length (an
+  // index into DetectorConfig::handrail_types, its name and length); -1,
+  // nullptr and 0 otherwise, or when the config lists no types.
+  int handrail_type = -1;
+  const char* handrail_type_name = nullptr;
+  float length_m = 0.0f;
+  // The mount surface the bar stands on: its distance from the dominant
+  // plane along the normal (0 on a flat wall; a seat track or another rack
+  // face on a rack wall).
+  float mount_offset_m = 0.0f;
   Eigen::Vector3f p_cam_target = Eigen::Vector3f::Zero();
   Eigen::Matrix3f R_cam_target = Eigen::Matrix3f::Zero();
   std::uint32_t inliers = 0;

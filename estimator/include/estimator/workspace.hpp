@@ -51,7 +51,7 @@ enum PixelFlag : std::uint8_t {
   kFlagCrossY = 1u << 4,
   kFlagSide = 1u << 5,
   kFlagLine = 1u << 6,
-  kFlagWall = 1u << 7,  // valid and within the wall tolerance: what the cross test's probes seek
+  kFlagWall = 1u << 7,  // valid and not above the wall tolerance: what the cross test's probes seek
 };
 
 struct Workspace {

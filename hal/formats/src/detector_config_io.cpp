@@ -39,6 +39,9 @@ constexpr FloatKey kFloatKeys[] = {
     {"front_height_tolerance_m", &estimator::DetectorConfig::front_height_tolerance_m},
     {"end_search_m", &estimator::DetectorConfig::end_search_m},
     {"target_standoff_m", &estimator::DetectorConfig::target_standoff_m},
+    {"mount_search_m", &estimator::DetectorConfig::mount_search_m},
+    {"mount_step_m", &estimator::DetectorConfig::mount_step_m},
+    {"mount_min_fraction", &estimator::DetectorConfig::mount_min_fraction},
 };
 constexpr UintKey kUintKeys[] = {
     {"plane_iterations", &estimator::DetectorConfig::plane_iterations},
@@ -49,10 +52,49 @@ constexpr UintKey kUintKeys[] = {
     {"line_attempts", &estimator::DetectorConfig::line_attempts},
     {"max_width", &estimator::DetectorConfig::max_width},
     {"max_height", &estimator::DetectorConfig::max_height},
+    {"max_mount_hypotheses", &estimator::DetectorConfig::max_mount_hypotheses},
+    {"mount_accept_inliers", &estimator::DetectorConfig::mount_accept_inliers},
 };
 
 std::string at(const std::string& path, const JsonValue& v) {
   return path + ":" + std::to_string(v.line) + ": ";
+}
+
+// "handrail_types": the names of the known lengths to accept, a subset of
+// the built-in list (the names are the detector's own strings); [] leaves
+// only handrail.bar_length_m.
+bool read_handrail_types(const JsonValue& v, const std::string& path, const std::string& quoted_key,
+                         estimator::DetectorConfig* c, std::string* error) {
+  const estimator::DetectorConfig defaults;
+  std::string known;
+  for (std::uint32_t k = 0; k < defaults.handrail_type_count; ++k) {
+    known += std::string(k ? ", " : "") + "\"" + defaults.handrail_types[k].name + "\"";
+  }
+  if (!v.is_array()) {
+    *error = at(path, v) + quoted_key + " must be an array of type names (" + known + ")";
+    return false;
+  }
+  c->handrail_type_count = 0;
+  for (const JsonValue& item : v.items) {
+    const estimator::HandrailType* type = nullptr;
+    for (std::uint32_t k = 0; item.is_string() && k < defaults.handrail_type_count; ++k) {
+      if (item.text == defaults.handrail_types[k].name) type = &defaults.handrail_types[k];
+    }
+    if (type == nullptr) {
+      *error = at(path, item) + quoted_key + ": unknown handrail type " +
+               (item.is_string() ? "\"" + item.text + "\"" : std::string("(not a string)")) +
+               "; known: " + known;
+      return false;
+    }
+    for (std::uint32_t k = 0; k < c->handrail_type_count; ++k) {
+      if (c->handrail_types[k].name == type->name) {
+        *error = at(path, item) + quoted_key + ": \"" + item.text + "\" is listed twice";
+        return false;
+      }
+    }
+    c->handrail_types[c->handrail_type_count++] = *type;
+  }
+  return true;
 }
 
 bool read_handrail(const JsonValue& h, const std::string& path, estimator::HandrailGeometry* g,
@@ -136,6 +178,10 @@ bool read_detector_config(const formats::JsonValue& root, const std::string& pat
         }
         return false;
       }
+      continue;
+    }
+    if (key == "handrail_types") {
+      if (!read_handrail_types(v, path, quoted(key), &c, error)) return false;
       continue;
     }
     bool known = false;

@@ -1,0 +1,166 @@
+#include "estimator/mount_surfaces.hpp"
+
+#include <cmath>
+#include <initializer_list>
+
+namespace estimator {
+namespace {
+
+// The bar's front face is looked for within this of where a mount puts it
+// (noise of a few millimetres at the ranges the detector works at).
+constexpr float kFrontWindowM = 0.006f;
+
+struct Histogram {
+  float lo_m = 0.0f;
+  int bins = 0;
+  std::uint32_t count[kMountHistogramBins] = {};
+
+  float center_m(int b) const { return lo_m + (static_cast<float>(b) + 0.5f) * kMountBinM; }
+  int bin_of(float s_m) const { return static_cast<int>(std::floor((s_m - lo_m) / kMountBinM)); }
+  // Pixels with distances in [lo, hi].
+  std::uint32_t sum(float lo, float hi) const {
+    int b0 = bin_of(lo), b1 = bin_of(hi);
+    b0 = b0 < 0 ? 0 : b0;
+    b1 = b1 >= bins ? bins - 1 : b1;
+    std::uint32_t n = 0;
+    for (int b = b0; b <= b1; ++b) n += count[b];
+    return n;
+  }
+};
+
+float bar_front_m(const DetectorConfig& cfg) {
+  return cfg.handrail.bar_center_offset_m + 0.5f * cfg.handrail.bar_depth_m;
+}
+
+// Every valid pixel's distance from the dominant plane, binned; invalid
+// pixels are -infinity and fall below the first bin.
+void fill_histogram(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Workspace& ws,
+                    Histogram* h) {
+  h->lo_m = -(cfg.mount_search_m + kMountBinM * 2.0f);
+  const float hi_m = cfg.mount_search_m + cfg.mount_step_m + bar_front_m(cfg) + 0.02f;
+  const int bins = static_cast<int>(std::ceil((hi_m - h->lo_m) / kMountBinM));
+  h->bins = bins < kMountHistogramBins ? bins : kMountHistogramBins;
+  const float* s = ws.signed_distance_m.get();
+  const float inv_bin = 1.0f / kMountBinM;
+  const float bins_f = static_cast<float>(h->bins);
+  const std::size_t n = cloud.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    // -infinity (invalid) and NaN fail; the range is checked before the
+    // conversion, which is undefined for a float beyond int's range.
+    const float x = (s[i] - h->lo_m) * inv_bin;
+    if (!(x >= 0.0f && x < bins_f)) continue;
+    ++h->count[static_cast<int>(x)];
+  }
+}
+
+// The surfaces: local maxima of the histogram smoothed over three bins,
+// within mount_search_m of the plane and with enough pixels; each at the
+// mean of its five bins.
+std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
+                                 std::uint32_t valid_pixels, float peak_m[kMaxSurfacePeaks]) {
+  const auto smoothed = [&h](int b) {
+    std::uint32_t n = h.count[b];
+    if (b > 0) n += h.count[b - 1];
+    if (b + 1 < h.bins) n += h.count[b + 1];
+    return n;
+  };
+  const float min_pixels = cfg.mount_min_fraction * static_cast<float>(valid_pixels);
+  std::uint32_t peaks = 0;
+  for (int b = 1; b + 1 < h.bins && peaks < kMaxSurfacePeaks; ++b) {
+    if (std::fabs(h.center_m(b)) > cfg.mount_search_m) continue;
+    const std::uint32_t c = smoothed(b);
+    if (static_cast<float>(c) < min_pixels || c < smoothed(b - 1) || c <= smoothed(b + 1)) {
+      continue;
+    }
+    double weighted = 0.0, total = 0.0;
+    for (int k = b - 2; k <= b + 2; ++k) {
+      if (k < 0 || k >= h.bins) continue;
+      weighted += static_cast<double>(h.count[k]) * h.center_m(k);
+      total += h.count[k];
+    }
+    peak_m[peaks++] = static_cast<float>(weighted / total);
+  }
+  return peaks;
+}
+
+void add_mount(float offset_m, std::uint32_t front_pixels, std::uint32_t capacity,
+               MountHypotheses* out) {
+  for (std::uint32_t k = 0; k < out->count; ++k) {
+    if (std::fabs(out->offset_m[k] - offset_m) < kSameMountM) {
+      if (front_pixels > out->front_pixels[k]) {
+        out->offset_m[k] = offset_m;
+        out->front_pixels[k] = front_pixels;
+      }
+      return;
+    }
+  }
+  // Insert in order of front pixels, best first; the worst falls off.
+  std::uint32_t at = out->count;
+  while (at > 0 && out->front_pixels[at - 1] < front_pixels) --at;
+  if (at >= capacity) return;
+  const std::uint32_t last = out->count < capacity ? out->count : capacity - 1;
+  for (std::uint32_t k = last; k > at; --k) {
+    out->offset_m[k] = out->offset_m[k - 1];
+    out->front_pixels[k] = out->front_pixels[k - 1];
+  }
+  out->offset_m[at] = offset_m;
+  out->front_pixels[at] = front_pixels;
+  if (out->count < capacity) ++out->count;
+}
+
+}  // namespace
+
+MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                      const Workspace& ws) {
+  Histogram h;
+  fill_histogram(cloud, cfg, ws, &h);
+  std::uint32_t valid = 0;
+  for (int b = 0; b < h.bins; ++b) valid += h.count[b];
+  float peak_m[kMaxSurfacePeaks];
+  const std::uint32_t peaks = find_surface_peaks(h, cfg, valid, peak_m);
+
+  const float front = bar_front_m(cfg);
+  const auto front_pixels = [&](float mount_m) {
+    return h.sum(mount_m + front - kFrontWindowM, mount_m + front + kFrontWindowM);
+  };
+  const std::uint32_t capacity = cfg.max_mount_hypotheses;
+  MountHypotheses out;
+  out.surface_count = peaks;
+  for (std::uint32_t p = 0; p < peaks; ++p) out.surface_m[p] = peak_m[p];
+  for (std::uint32_t p = 0; p < peaks; ++p) {
+    // The bar on the surface itself, or on a seat track standing on it.
+    for (const float mount : {peak_m[p], peak_m[p] + cfg.mount_step_m}) {
+      const std::uint32_t n = front_pixels(mount);
+      if (n >= cfg.min_line_inliers) add_mount(mount, n, capacity, &out);
+    }
+  }
+  // Nothing anywhere looks like a bar's front: the dominant plane alone, so
+  // that the frame is judged (and its reason given) as on a flat wall.
+  if (out.count == 0) add_mount(0.0f, front_pixels(0.0f), capacity, &out);
+  return out;
+}
+
+bool find_mount_under_bar(const MountHypotheses& mounts, const DetectorConfig& cfg, float front_m,
+                          float tolerance_m, float* mount_m) {
+  const float expected_mount = front_m - bar_front_m(cfg);
+  float best_error = tolerance_m;
+  bool found = false;
+  const auto consider = [&](float mount) {
+    const float error = std::fabs(mount - expected_mount);
+    if (error < best_error) {
+      best_error = error;
+      *mount_m = mount;
+      found = true;
+    }
+  };
+  consider(0.0f);
+  for (std::uint32_t k = 0; k < mounts.surface_count && k < kMaxSurfacePeaks; ++k) {
+    consider(mounts.surface_m[k]);
+    consider(mounts.surface_m[k] + cfg.mount_step_m);
+  }
+  // A bar best explained as standing on the dominant plane itself has had
+  // its verdict, by the flat-wall rules: it is not found again here.
+  return found && std::fabs(*mount_m) >= kSameMountM;
+}
+
+}  // namespace estimator

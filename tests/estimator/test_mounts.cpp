@@ -1,0 +1,204 @@
+// The rack-wall parts of the detector on their own: the surfaces in view
+// and the mounts they offer (mount_surfaces), the surface found under a bar
+// from its front face's height, and the ISS handrail lengths
+// (handrail_types).
+#include <cmath>
+#include <vector>
+
+#include "cmocka_cpp.hpp"
+#include "estimator/handrail_types.hpp"
+#include "estimator/mount_surfaces.hpp"
+
+using namespace estimator;
+
+namespace {
+
+constexpr float kFront = 0.061f + 0.0175f;  // the ISS bar's front face above its mount
+
+// A frame's distances from the dominant plane, as the gap distance pass
+// leaves them: `share` of the pixels at each height (+- 1 mm of spread,
+// deterministic), the rest invalid (-infinity).
+struct Heights {
+  float height_m;
+  float share;
+};
+struct DistanceFrame {
+  OrganizedCloud cloud;
+  Workspace ws{224 * 171};
+  explicit DistanceFrame(const std::vector<Heights>& layers) {
+    cloud.width = 224;
+    cloud.height = 171;
+    const std::size_t n = cloud.size();
+    std::size_t i = 0;
+    for (const Heights& h : layers) {
+      const std::size_t count = static_cast<std::size_t>(h.share * static_cast<float>(n));
+      for (std::size_t k = 0; k < count && i < n; ++k, ++i) {
+        ws.signed_distance_m[i] = h.height_m + 0.0005f * (static_cast<float>(k % 5) - 2.0f);
+      }
+    }
+    for (; i < n; ++i) ws.signed_distance_m[i] = -INFINITY;
+  }
+};
+
+bool has_surface(const MountHypotheses& m, float height_m) {
+  for (std::uint32_t k = 0; k < m.surface_count; ++k) {
+    if (std::fabs(m.surface_m[k] - height_m) < 0.0015f) return true;
+  }
+  return false;
+}
+
+bool has_mount(const MountHypotheses& m, float height_m) {
+  for (std::uint32_t k = 0; k < m.count; ++k) {
+    if (std::fabs(m.offset_m[k] - height_m) < 0.0015f) return true;
+  }
+  return false;
+}
+
+void test_surfaces_of_a_rack_wall(void**) {
+  // The dominant face, a face 3 cm back, a seat track 1.3 cm proud of the
+  // dominant face and a bar standing on the track.
+  const DistanceFrame f({{0.0f, 0.5f}, {-0.03f, 0.25f}, {0.013f, 0.04f}, {0.013f + kFront, 0.03f}});
+  const DetectorConfig cfg;
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_true(has_surface(m, 0.0f));
+  assert_true(has_surface(m, -0.03f));
+  assert_true(has_surface(m, 0.013f));
+  // The bar's front is where the track (or the face under it, plus the
+  // seat track's step) puts it: that mount comes first.
+  assert_true(m.count >= 1);
+  assert_near(m.offset_m[0], 0.013f, 0.0015f);
+  assert_true(m.front_pixels[0] >= static_cast<std::uint32_t>(0.02f * 224 * 171));
+  // The 3 cm deeper face has no bar over it: not a mount worth searching.
+  assert_false(has_mount(m, -0.03f));
+  assert_false(has_mount(m, -0.03f + cfg.mount_step_m));
+}
+
+void test_surfaces_too_far_from_the_plane_are_not_mounts(void**) {
+  // A box top 10 cm proud with something at a bar's height above it: rack
+  // faces differ by at most 5 cm, so it is no mount.
+  const DistanceFrame f({{0.0f, 0.6f}, {0.10f, 0.2f}, {0.10f + kFront, 0.05f}});
+  const DetectorConfig cfg;
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_false(has_surface(m, 0.10f));
+  assert_false(has_mount(m, 0.10f));
+}
+
+void test_no_bar_anywhere_leaves_the_plane(void**) {
+  const DistanceFrame f({{0.0f, 0.7f}, {-0.02f, 0.2f}});
+  const DetectorConfig cfg;
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_int_equal(m.count, 1);
+  assert_near(m.offset_m[0], 0.0f, 1e-6f);
+}
+
+void test_a_small_surface_is_no_surface(void**) {
+  // Under mount_min_fraction of the valid pixels: noise, a label, an edge.
+  const DistanceFrame f({{0.0f, 0.8f}, {-0.025f, 0.004f}});
+  const DetectorConfig cfg;
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_true(has_surface(m, 0.0f));
+  assert_false(has_surface(m, -0.025f));
+}
+
+void test_huge_and_not_finite_distances_are_ignored(void**) {
+  DistanceFrame f({{0.0f, 0.5f}});
+  const std::size_t n = f.cloud.size();
+  for (std::size_t i = n / 2; i < n; i += 3) f.ws.signed_distance_m[i] = 1e30f;
+  for (std::size_t i = n / 2 + 1; i < n; i += 3) f.ws.signed_distance_m[i] = NAN;
+  for (std::size_t i = n / 2 + 2; i < n; i += 3) f.ws.signed_distance_m[i] = -1e30f;
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, DetectorConfig{}, f.ws);
+  assert_true(has_surface(m, 0.0f));
+  assert_int_equal(m.surface_count, 1);
+}
+
+void test_the_mount_under_a_bar(void**) {
+  const DetectorConfig cfg;
+  MountHypotheses m;
+  m.surface_count = 2;
+  m.surface_m[0] = 0.0f;
+  m.surface_m[1] = -0.03f;
+  float mount = 99.0f;
+  // On the deeper face directly.
+  assert_true(find_mount_under_bar(m, cfg, -0.03f + kFront + 0.002f, 0.004f, &mount));
+  assert_near(mount, -0.03f, 1e-6f);
+  // On a seat track on the deeper face.
+  assert_true(find_mount_under_bar(m, cfg, -0.03f + 0.013f + kFront, 0.004f, &mount));
+  assert_near(mount, -0.03f + 0.013f, 1e-6f);
+  // On a seat track on the dominant face.
+  assert_true(find_mount_under_bar(m, cfg, 0.013f + kFront - 0.003f, 0.004f, &mount));
+  assert_near(mount, 0.013f, 1e-6f);
+  // On the dominant face itself: that is the flat-wall search's to judge.
+  assert_false(find_mount_under_bar(m, cfg, kFront, 0.004f, &mount));
+  // A cable 2 cm higher than any handrail's front: nothing under it.
+  assert_false(find_mount_under_bar(m, cfg, 0.013f + kFront + 0.02f, 0.004f, &mount));
+  // Outside the tolerance, by a little.
+  assert_false(find_mount_under_bar(m, cfg, -0.03f + kFront + 0.006f, 0.004f, &mount));
+}
+
+void test_iss_lengths_are_matched_by_ratio(void**) {
+  const DetectorConfig cfg;  // the station's four handrails and the module rail
+  struct Case {
+    float beam_m;
+    const char* type;  // nullptr: no handrail has that length
+  } cases[] = {{0.20f, "8.5 in"}, {0.215f, "8.5 in"},     {0.53f, "21.5 in"}, {0.48f, "21.5 in"},
+               {0.76f, "30 in"},  {0.98f, "module rail"}, {1.06f, "41.5 in"}, {0.33f, nullptr},
+               {0.10f, nullptr},  {1.40f, nullptr}};
+  for (const Case& c : cases) {
+    const int k = match_handrail_type(cfg, c.beam_m);
+    if (c.type == nullptr) {
+      assert_int_equal(k, -1);
+      assert_false(beam_length_matches(cfg, c.beam_m));
+    } else {
+      assert_true(k >= 0);
+      assert_string_equal(cfg.handrail_types[k].name, c.type);
+      assert_true(beam_length_matches(cfg, c.beam_m));
+    }
+  }
+  assert_near(longest_handrail_m(cfg), 1.040f, 1e-6f);
+}
+
+void test_one_configured_length_without_types(void**) {
+  DetectorConfig cfg;
+  cfg.handrail_type_count = 0;
+  cfg.handrail = iss_handrail(0.3f);
+  assert_int_equal(match_handrail_type(cfg, 0.3f), -1);
+  assert_true(beam_length_matches(cfg, 0.3f));
+  assert_false(beam_length_matches(cfg, 0.53f));
+  assert_near(longest_handrail_m(cfg), 0.3f, 1e-6f);
+}
+
+void test_bad_mount_and_type_settings_are_named(void**) {
+  DetectorConfig cfg;
+  cfg.max_mount_hypotheses = 0;
+  assert_string_equal(validate(cfg), "max_mount_hypotheses");
+  cfg = DetectorConfig{};
+  cfg.max_mount_hypotheses = kMaxMountHypotheses + 1;
+  assert_string_equal(validate(cfg), "max_mount_hypotheses");
+  cfg = DetectorConfig{};
+  cfg.mount_search_m = -0.01f;
+  assert_string_equal(validate(cfg), "mount_search_m");
+  cfg = DetectorConfig{};
+  cfg.handrail_types[1].bar_length_m = NAN;
+  assert_string_equal(validate(cfg), "handrail_types");
+  cfg = DetectorConfig{};
+  cfg.handrail_type_count = kMaxHandrailTypes + 1;
+  assert_string_equal(validate(cfg), "handrail_types");
+  assert_null(validate(DetectorConfig{}));
+}
+
+}  // namespace
+
+int main() {
+  const CMUnitTest tests[] = {
+      cmocka_unit_test(test_surfaces_of_a_rack_wall),
+      cmocka_unit_test(test_surfaces_too_far_from_the_plane_are_not_mounts),
+      cmocka_unit_test(test_no_bar_anywhere_leaves_the_plane),
+      cmocka_unit_test(test_a_small_surface_is_no_surface),
+      cmocka_unit_test(test_huge_and_not_finite_distances_are_ignored),
+      cmocka_unit_test(test_the_mount_under_a_bar),
+      cmocka_unit_test(test_iss_lengths_are_matched_by_ratio),
+      cmocka_unit_test(test_one_configured_length_without_types),
+      cmocka_unit_test(test_bad_mount_and_type_settings_are_named),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
