@@ -46,6 +46,7 @@ LocalizationTaskCounters LocalizationTask::counters() const {
   LocalizationTaskCounters c;
   c.imu_in = imu_in_.load();
   c.gp_in = gp_in_.load();
+  c.gp_held_off = gp_held_off_.load();
   c.handrail_in = handrail_in_.load();
   c.imu_seq_gaps = imu_seq_gaps_.load();
   c.imu_queue_overflows = imu_queue_.overflows();
@@ -76,6 +77,10 @@ void LocalizationTask::step() {
   }
   while (gp_queue_.pop(&gp_)) {
     gp_in_.fetch_add(1);
+    if (!cfg_.gp_while_handrail_holds && filter_->handrail_holding()) {
+      gp_held_off_.fetch_add(1);
+      continue;
+    }
     loc::GpPose g;
     g.capture_time_us = gp_.capture_utime;
     const Eigen::Isometry3d T = from_msg(gp_.T_world_body);

@@ -84,13 +84,14 @@ void print_localization(const RunSummary& s, std::FILE* out) {
     const LocalizerReport& r = *s.localizer;
     std::fprintf(out,
                  "  localizer           IMU %u propagated, %u gaps bridged, %u lost, %u "
-                 "rejected; GP %u accepted, %u gated, %u jump, %u relocalized; handrail %u + "
+                 "rejected; GP %u accepted, %llu held off, %u gated, %u jump, %u relocalized; "
+                 "handrail %u + "
                  "%u NE accepted, %u gated, %u other rejections, %u features gated%s\n",
                  r.imu_propagated, r.imu_gaps_bridged, r.imu_gaps_lost, r.imu_rejected,
-                 r.gp_accepted, r.gp_rejected_gate, r.gp_rejected_jump, r.gp_relocalized,
-                 r.handrail_accepted, r.handrail_no_end_accepted, r.handrail_rejected_gate,
-                 r.handrail_rejected_other, r.features_gated,
-                 r.map_valid ? "; handrail map held" : "");
+                 r.gp_accepted, static_cast<unsigned long long>(r.task.gp_held_off),
+                 r.gp_rejected_gate, r.gp_rejected_jump, r.gp_relocalized, r.handrail_accepted,
+                 r.handrail_no_end_accepted, r.handrail_rejected_gate, r.handrail_rejected_other,
+                 r.features_gated, r.map_valid ? "; handrail map held" : "");
   }
 }
 
@@ -226,7 +227,8 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
     std::fprintf(f,
                  "\"filter\": {\"initialized\": %s, \"map_valid\": %s, \"imu_propagated\": %u, "
                  "\"imu_gaps_bridged\": %u, \"imu_gaps_lost\": %u, \"imu_rejected\": %u, "
-                 "\"imu_seq_gaps\": %llu, \"gp_accepted\": %u, \"gp_rejected_gate\": %u, "
+                 "\"imu_seq_gaps\": %llu, \"gp_accepted\": %u, \"gp_held_off\": %llu, "
+                 "\"gp_rejected_gate\": %u, "
                  "\"gp_rejected_jump\": %u, \"gp_relocalized\": %u, \"gp_rejected_other\": %u, "
                  "\"handrail_accepted\": %u, \"handrail_no_end_accepted\": %u, "
                  "\"handrail_rejected_gate\": %u, \"handrail_rejected_other\": %u, "
@@ -235,9 +237,9 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
                  r.initialized ? "true" : "false", r.map_valid ? "true" : "false", r.imu_propagated,
                  r.imu_gaps_bridged, r.imu_gaps_lost, r.imu_rejected,
                  static_cast<unsigned long long>(r.task.imu_seq_gaps), r.gp_accepted,
-                 r.gp_rejected_gate, r.gp_rejected_jump, r.gp_relocalized, r.gp_rejected_other,
-                 r.handrail_accepted, r.handrail_no_end_accepted, r.handrail_rejected_gate,
-                 r.handrail_rejected_other,
+                 static_cast<unsigned long long>(r.task.gp_held_off), r.gp_rejected_gate,
+                 r.gp_rejected_jump, r.gp_relocalized, r.gp_rejected_other, r.handrail_accepted,
+                 r.handrail_no_end_accepted, r.handrail_rejected_gate, r.handrail_rejected_other,
                  static_cast<unsigned long long>(r.task.handrail_unusable), r.features_gated,
                  r.map_resets, static_cast<unsigned long long>(r.task.poses_published));
   } else {

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <thread>
@@ -128,6 +129,16 @@ bool perched_within_1cm(const Outcome& o) {
   return o.flag("perched") && o.flag("success");
 }
 
+// A number inside the summary's nested objects ("localization", "approach",
+// "filter", "mean_m"); -1 when missing.
+double nested(const Outcome& o, std::initializer_list<const char*> path) {
+  const formats::JsonValue* v = &o.json;
+  for (const char* key : path) {
+    v = v ? v->find(key) : nullptr;
+  }
+  return v && v->is_number() ? v->number : -1.0;
+}
+
 void test_clean_perch(void**) {
   const Outcome o = run_expecting("approach-iss", {"--seed", "2"}, perched_within_1cm);
   assert_true(o.flag("perched"));
@@ -135,6 +146,48 @@ void test_clean_perch(void**) {
   assert_int_equal(o.exit_status, 0);
   assert_true(o.number("grasp_error_m") >= 0.0 && o.number("grasp_error_m") <= 0.01);
   assert_true(o.number("frames_processed") > 10);
+  // It flew on the localization filter: every ROBOT_POSE came from it, its
+  // error was scored over the approach beside the GP's, and the process
+  // subscribed to no truth channel.
+  const double filter_mean = nested(o, {"localization", "approach", "filter", "mean_m"});
+  const double gp_mean = nested(o, {"localization", "approach", "gp", "mean_m"});
+  std::printf("  filter error over the approach %.1f mm (GP %.1f mm), at grasp %.1f mm\n",
+              1e3 * filter_mean, 1e3 * gp_mean,
+              1e3 * nested(o, {"localization", "grasp", "filter_m"}));
+  assert_true(nested(o, {"localization", "filter_poses"}) > 100);
+  assert_true(nested(o, {"localization", "non_filter_poses"}) == 0.0);
+  assert_true(nested(o, {"localization", "approach", "filter", "samples"}) > 100);
+  assert_true(filter_mean >= 0.0 && filter_mean < 0.1);
+  assert_true(nested(o, {"localization", "filter", "handrail_accepted"}) > 5);
+  const formats::JsonValue* inputs = o.json.find("inputs");
+  assert_non_null(inputs);
+  assert_non_null(inputs->find("IMU_SAMPLE"));
+  assert_null(inputs->find("TRUTH_POSE"));
+}
+
+// The IMU silent for half a second mid-approach: the filter bridges the
+// gap, counted, and the robot perches.
+void test_imu_silent_half_a_second_is_ridden_out(void**) {
+  const Outcome o = run_expecting("approach-iss", {"--seed", "10", "--fault", "imu-silent@1"},
+                                  perched_within_1cm);
+  assert_true(o.flag("perched"));
+  assert_true(nested(o, {"localization", "filter", "imu_seq_gaps"}) >= 25);
+  assert_true(nested(o, {"localization", "filter", "imu_gaps_bridged"}) >= 1);
+}
+
+// The GP jumping 20 cm mid-approach while the handrail holds the pose:
+// the jumped poses held off (the localizer's rule) or rejected by the
+// filter's gate in a moment without the handrail, the robot perches. (Once
+// perched, with the bar out of view, three agreeing poses may relocalise
+// the filter: the rule's other half.)
+void test_gp_jump_during_the_approach_is_rejected(void**) {
+  const Outcome o =
+      run_expecting("approach-iss", {"--seed", "11", "--fault", "gp-jump@1"}, perched_within_1cm);
+  assert_true(o.flag("perched"));
+  assert_true(nested(o, {"localization", "filter", "gp_rejected_gate"}) +
+                  nested(o, {"localization", "filter", "gp_rejected_jump"}) +
+                  nested(o, {"localization", "filter", "gp_held_off"}) >=
+              3);
 }
 
 void test_servo_stops_answering_mid_approach(void**) {
@@ -416,6 +469,8 @@ int main(int argc, char** argv) {
   }
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_clean_perch),
+      cmocka_unit_test(test_imu_silent_half_a_second_is_ridden_out),
+      cmocka_unit_test(test_gp_jump_during_the_approach_is_rejected),
       cmocka_unit_test(test_servo_stops_answering_mid_approach),
       cmocka_unit_test(test_gripper_over_current),
       cmocka_unit_test(test_handrail_occluded_for_a_second_is_ridden_out),

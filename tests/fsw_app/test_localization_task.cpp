@@ -74,16 +74,18 @@ struct Rig {
   } pending;
   bool have_pending = false;
 
-  explicit Rig(std::uint64_t seed, double gp_bias_m = 0.05, double gp_bias_deg = 2.0)
+  explicit Rig(std::uint64_t seed, double gp_bias_m = 0.05, double gp_bias_deg = 2.0,
+               bool gp_while_handrail_holds = false)
       : sensors(hub, fsw_app::hil_sensor_params(gp_bias_m, gp_bias_deg), seed),
-        cfg(make_cfg()),
+        cfg(make_cfg(gp_while_handrail_holds)),
         task(hub, cfg, clock),
         flyer(start_pose(), sim_hal::FlyerParams{}, seed),
         rng(seed * 31 + 7) {
     hub.subscribe(fsw_app::channel::kRobotPose, &pose_box);
   }
-  static fsw_app::LocalizationTaskConfig make_cfg() {
+  static fsw_app::LocalizationTaskConfig make_cfg(bool gp_while_handrail_holds) {
     fsw_app::LocalizationTaskConfig c;
+    c.gp_while_handrail_holds = gp_while_handrail_holds;
     c.filter.T_body_cam = loc::default_T_body_cam();
     return c;
   }
@@ -265,19 +267,32 @@ void test_handrail_5cm_off_is_gated(void**) {
               accepted_before);
 }
 
-// The GP jumping 20 cm: while the handrail holds the pose every jumped pose
-// is rejected (the rule: the handrail is the better reference when
-// perching); without the handrail, three agreeing poses relocalise the
-// filter onto them. Never a divergence.
+// The GP jumping 20 cm: while the handrail holds the pose no GP pose is
+// applied (the task's rule: the handrail map is the reference when
+// perching), so the jump changes nothing; applied anyway (the option off),
+// the filter's gate rejects every jumped pose; without the handrail, three
+// agreeing poses relocalise the filter onto them. Never a divergence.
 void test_gp_jump_rejected_while_the_handrail_holds_taken_without(void**) {
-  Rig r(8);
+  Rig held(8);
+  held.run(12.0);
+  const std::uint64_t held_before = held.task.counters().gp_held_off;
+  held.sensors.jump_gp(Eigen::Vector3d(0.0, 0.2, 0.0));
+  held.run(6.0);
+  std::printf("handrail holding: %llu GP poses held off, relative %.1f mm\n",
+              static_cast<unsigned long long>(held.task.counters().gp_held_off - held_before),
+              1e3 * held.relative_error_m());
+  assert_true(held.task.counters().gp_held_off >= held_before + 6);
+  assert_int_equal(count(held, loc::MeasurementKind::kGpPose, loc::UpdateStatus::kRelocalized), 0);
+  assert_true(held.relative_error_m() < 0.01);
+
+  Rig r(8, 0.05, 2.0, true);
   r.run(12.0);
   r.sensors.jump_gp(Eigen::Vector3d(0.0, 0.2, 0.0));
   r.run(6.0);
   const std::uint32_t rejected =
       count(r, loc::MeasurementKind::kGpPose, loc::UpdateStatus::kRejectedGate) +
       count(r, loc::MeasurementKind::kGpPose, loc::UpdateStatus::kRejectedJump);
-  std::printf("handrail holding: %u GP poses rejected, %u relocalisations, relative %.1f mm\n",
+  std::printf("GP applied while holding: %u rejected, %u relocalisations, relative %.1f mm\n",
               rejected, count(r, loc::MeasurementKind::kGpPose, loc::UpdateStatus::kRelocalized),
               1e3 * r.relative_error_m());
   assert_true(rejected >= 5);
