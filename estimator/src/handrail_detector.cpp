@@ -183,83 +183,93 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     return;
   }
 
-  // First the dominant plane as the mount, exactly as on a flat wall (the
-  // front height measured from it alone). Where that finds the handrail,
-  // nothing else runs.
+  // The distances to the dominant plane, for every pixel, and the mounts
+  // they show.
   wall_ = plane.plane;
-  search_mount_m_ = 0.0f;
-  strict_mount_ = true;
   out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
-  HandrailDetection first = *out;
-  search_on_mount(cloud, start_us, &first);
-  first.counts.mounts_tried = 1;
-  const bool strong =
-      first.status == DetectStatus::kFound && first.inliers >= cfg_.mount_accept_inliers;
-  if (strong || first.status == DetectStatus::kDeadlineMissed || over_budget(start_us)) {
-    *out = first;
-    return;
-  }
-
-  // Then the other surfaces in view, from the distances that pass wrote:
-  // each mount in turn, best first. A handrail found with at least
-  // mount_accept_inliers line inliers ends the search; a weaker one (a
-  // fragment, or a far bar) is kept while the other mounts are tried, and
-  // the best supported of those found wins: on a wrong mount the real bar
-  // fails the height tests, while a short piece of clutter may pass them.
-  // A frame with none reports what the dominant plane's search found (its
-  // status and counts), as on a flat wall.
   mounts_ = find_mount_hypotheses(cloud, cfg_, ws_);
-  strict_mount_ = false;
-  const MountHypotheses& mounts = mounts_;
-  first.counts.mount_hypotheses = mounts.count;
-  // A weak find on the dominant plane competes with the others.
-  HandrailDetection best = first;
+  out->counts.mount_hypotheses = mounts_.count;
+
+  // The searches: the dominant plane as the mount, exactly as on a flat wall
+  // (the front height measured from it alone), and every other mount, best
+  // first, with the front height against the surfaces in view. The plane
+  // goes first unless another mount shows four times its bar-front pixels
+  // (a rack wall, where the flat-wall search mostly fails). A handrail found
+  // with at least mount_accept_inliers line inliers ends the search; a
+  // weaker one (a fragment, or a far bar) is kept while the others run, and
+  // the best supported wins: on a wrong mount the real bar fails the height
+  // tests, while a short piece of clutter may pass them. A frame with none
+  // reports what the flat-wall search found (its status and counts).
   constexpr std::uint32_t kDominant = kMaxMountHypotheses;
-  std::uint32_t tried = 1, best_k = kDominant, last_k = kDominant;
-  for (std::uint32_t k = 0; k < mounts.count; ++k) {
-    // The dominant plane was searched above; on it a bar whose front stands
-    // a seat track higher is found through the mount a step above it.
-    if (std::fabs(mounts.offset_m[k]) < kSameMountM) continue;
-    HandrailDetection attempt = first;
+  std::uint32_t order[kMaxMountHypotheses + 1];
+  std::uint32_t searches = 0;
+  const bool plane_first =
+      mounts_.count == 0 || 4u * mounts_.dominant_front_pixels >= mounts_.front_pixels[0];
+  if (plane_first) order[searches++] = kDominant;
+  for (std::uint32_t k = 0; k < mounts_.count; ++k) {
+    // On the dominant plane a bar whose front stands a seat track higher is
+    // found through the mount a step above it.
+    if (std::fabs(mounts_.offset_m[k]) >= kSameMountM) order[searches++] = k;
+  }
+  if (!plane_first) order[searches++] = kDominant;
+
+  HandrailDetection best, flat;
+  bool have_flat = false;
+  bool dominant_pass_fresh = true;  // the workspace holds the plane's own pass
+  std::uint32_t tried = 0, best_slot = kDominant, last_slot = kDominant;
+  for (std::uint32_t n = 0; n < searches; ++n) {
+    const std::uint32_t slot = order[n];
+    HandrailDetection attempt = *out;
+    if (slot == kDominant) {
+      strict_mount_ = true;
+      search_mount(cloud, plane.plane, 0.0f, !dominant_pass_fresh, start_us, &attempt);
+      flat = attempt;
+      have_flat = true;
+    } else {
+      strict_mount_ = false;
+      search_mount(cloud, plane.plane, mounts_.offset_m[slot], true, start_us, &attempt);
+    }
+    dominant_pass_fresh = false;
     ++tried;
-    search_mount(cloud, plane.plane, mounts.offset_m[k], start_us, &attempt);
-    last_k = k;
+    last_slot = slot;
+    if (n == 0 && !have_flat) flat = attempt;  // reported if the plane is never reached
     if (attempt.status == DetectStatus::kDeadlineMissed) {
       *out = attempt;
+      out->counts.mounts_tried = tried;
       return;
     }
     if (attempt.status == DetectStatus::kFound &&
         (best.status != DetectStatus::kFound || attempt.inliers > best.inliers)) {
       best = attempt;
-      best_k = k;
+      best_slot = slot;
       if (attempt.inliers >= cfg_.mount_accept_inliers) break;
     }
     if (over_budget(start_us)) break;
   }
   if (best.status == DetectStatus::kFound) {
-    // The workspace (the debug pictures, the flags) shows the last mount
-    // searched; search the winner again if that was another.
-    if (best_k != last_k) {
-      strict_mount_ = best_k == kDominant;
-      HandrailDetection again = first;
-      search_mount(cloud, plane.plane, best_k == kDominant ? 0.0f : mounts.offset_m[best_k],
+    // The workspace (the debug pictures, the flags) shows the last search;
+    // search the winner again if that was another and the pictures need it.
+    if (cfg_.workspace_shows_result && best_slot != last_slot) {
+      strict_mount_ = best_slot == kDominant;
+      HandrailDetection again = *out;
+      search_mount(cloud, plane.plane, strict_mount_ ? 0.0f : mounts_.offset_m[best_slot], true,
                    start_us, &again);
     }
     *out = best;
   } else {
-    *out = first;
+    *out = flat;
   }
-  out->counts.mount_hypotheses = mounts.count;
   out->counts.mounts_tried = tried;
 }
 
 void HandrailDetector::search_mount(const OrganizedCloud& cloud, const Plane& dominant,
-                                    float offset_m, std::int64_t start_us, HandrailDetection* out) {
+                                    float offset_m, bool run_gap_pass, std::int64_t start_us,
+                                    HandrailDetection* out) {
   out->mount_offset_m = offset_m;
   search_mount_m_ = offset_m;
   wall_ = dominant;
   wall_.d -= offset_m;
-  gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
+  if (run_gap_pass) gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
   search_on_mount(cloud, start_us, out);
 }
 

@@ -224,6 +224,21 @@ BENCHMARK_CAPTURE(BM_ScenarioProposed, table2_round, "table2-round.json", true)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, clutter_only, "clutter-only.json", false)
     ->Unit(benchmark::kMillisecond);
+// Issue #17: the station's rack walls (every 10th frame of each scenario).
+BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_21_5, "rack-table2-iss-mesh-21-5.json", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_0_76, "rack-table2-iss-0-76.json", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_approach_vertical_21_5,
+                  "rack-approach-vertical-21-5.json", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_clutter_vertical_30, "rack-clutter-vertical-30.json",
+                  false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_no_handrail_wall, "rack-no-handrail-wall.json", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, columbus_approaches, "columbus-approaches.json", false)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FrameBasic, iss_table2_1, "table2-iss-1.pcd", false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Stage, sample_valid_points, 6)->Unit(benchmark::kMicrosecond);

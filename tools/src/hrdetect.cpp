@@ -246,6 +246,8 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> files;
   bool all_read = collect_inputs(args, &files);
+  // The pictures show the workspace: keep it on the winning mount's search.
+  if (!debug_dir.empty()) cfg.workspace_shows_result = true;
   estimator::HandrailDetector detector(cfg);
   estimator::TrackerConfig track_cfg;
   track_cfg.target_standoff_m = cfg.target_standoff_m;

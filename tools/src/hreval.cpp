@@ -38,7 +38,7 @@ void usage(FILE* out) {
                "  --out DIR         where report.md and the charts go (default hreval-out)\n"
                "  --max-frames N    at most N frames per scenario (for a quick look)\n"
                "  --true-length     configure the detector for each scenario's first handrail's\n"
-               "                    bar length (default: the flight default, 0.55 m)\n"
+               "                    bar length alone (default: every ISS length)\n"
                "  -h, --help        this text\n",
                HRP_SCENARIO_DIR);
 }

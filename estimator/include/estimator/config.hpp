@@ -112,6 +112,11 @@ struct DetectorConfig {
   std::uint32_t max_width = 224;
   std::uint32_t max_height = 171;
 
+  // For debug pictures: when the winning search over mounts was not the
+  // last one, search it again so that the workspace's flags show it (a
+  // whole extra search on such frames; off in flight).
+  bool workspace_shows_result = false;
+
   // Per-frame budget; 0 = no budget.
   std::int64_t budget_us = 0;
 };

@@ -52,9 +52,10 @@ class HandrailDetector {
   void clear_flags(const OrganizedCloud& cloud);
   void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
   // The search on the mount offset_m from the dominant plane: wall_ set to
-  // it, the gap distance pass against it, then search_on_mount().
+  // it, the gap distance pass against it (unless the workspace already
+  // holds it), then search_on_mount().
   void search_mount(const OrganizedCloud& cloud, const Plane& dominant, float offset_m,
-                    std::int64_t start_us, HandrailDetection* out);
+                    bool run_gap_pass, std::int64_t start_us, HandrailDetection* out);
   // The paper's tests and line search against the current wall_ (one mount
   // surface), after the gap distance pass has run against it.
   void search_on_mount(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);

@@ -33,6 +33,8 @@ struct MountHypotheses {
   float offset_m[kMaxMountHypotheses] = {};
   // Pixels where that mount puts the bar's front face.
   std::uint32_t front_pixels[kMaxMountHypotheses] = {};
+  // ... and where the dominant plane itself puts it.
+  std::uint32_t dominant_front_pixels = 0;
 };
 
 // Histogram bins: 2.5 mm over the dominant plane's +-(mount_search_m +
