@@ -12,7 +12,14 @@ namespace {
 using v4::Floats4;
 using v4::Ints4;
 
-constexpr float kTwoPi = 6.28318530718f;
+// The pass writes states as lane values; these are PixelState's.
+static_assert(static_cast<int>(PixelState::kValid) == 0 &&
+                  static_cast<int>(PixelState::kSaturated) == 1 &&
+                  static_cast<int>(PixelState::kDark) == 2 &&
+                  static_cast<int>(PixelState::kInconsistent) == 3 &&
+                  static_cast<int>(PixelState::kOutOfRange) == 4 &&
+                  static_cast<int>(PixelState::kNoisy) == 5,
+              "phase_pass's lane values");
 
 // One frequency's result for four pixels.
 struct FrequencyResult {
