@@ -138,6 +138,8 @@ const char* to_string(DetectStatus status) {
 Workspace::Workspace(std::size_t n)
     : max_pixels(n),
       signed_distance_m(new float[n]),
+      plane_distance_m(new float[n]),
+      gap_widen_m(new float[n]),
       flags(new std::uint8_t[n]),
       line_t_m(new float[n]),
       sample(kMaxRefitSamples),
@@ -162,7 +164,7 @@ Workspace::Workspace(std::size_t n)
       refit_z_m(new float[kMaxRefitSamples]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 5 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
+  return max_pixels * (sizeof(float) * 7 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
          3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
          sizeof(std::int32_t) * kMaxRefitSamples + 4 * 4 * kMaxWidth;
 }

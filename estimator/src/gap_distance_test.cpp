@@ -32,7 +32,8 @@ struct GapTestLimits {
 // rejects a NaN, infinite or non-positive z. A noisy pixel's gap window is
 // widened by twice its standard deviation, the noise bounded to [0, 2 cm]
 // with NaN as 0, so no bad value can open the windows.
-Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* distance_m) {
+Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* distance_m,
+                           float* widen_m) {
   const Floats4 x = {p[0].x_m, p[1].x_m, p[2].x_m, p[3].x_m};
   const Floats4 y = {p[0].y_m, p[1].y_m, p[2].y_m, p[3].y_m};
   const Floats4 z = {p[0].z_m, p[1].z_m, p[2].z_m, p[3].z_m};
@@ -47,6 +48,7 @@ Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* d
   const Floats4 positive = noise > zero ? noise : zero;  // NaN fails: 0
   const Floats4 cap = {0.02f, 0.02f, 0.02f, 0.02f};
   const Floats4 widen = 2.0f * (positive < cap ? positive : cap);
+  std::memcpy(widen_m, &widen, sizeof widen);
   const Floats4 abs_s = s < zero ? -s : s;
   const Ints4 on_plane = valid & (abs_s < g.plane_inlier_m);
   // "On the wall" for the cross test's probes means not raised off it: a
@@ -75,6 +77,7 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
   // byte stores through a member could alias anything and force reloads.
   const CloudPoint* points = cloud.points;
   float* distance_out = ws.signed_distance_m.get();
+  float* widen_out = ws.gap_widen_m.get();
   std::uint8_t* flags_out = ws.flags.get();
   std::int32_t* gap_out = ws.gap.begin();
   std::size_t valid_count = 0, gap_count = 0, plane_inliers = 0;
@@ -84,7 +87,7 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
   constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap;
   std::size_t k = 0;
   for (; k + 4 <= n; k += 4) {
-    const Ints4 flags = classify_four_pixels(points + k, g, distance_out + k);
+    const Ints4 flags = classify_four_pixels(points + k, g, distance_out + k, widen_out + k);
     const Bytes4 flag_bytes = __builtin_convertvector(flags, Bytes4);
     std::memcpy(flags_out + k, &flag_bytes, sizeof flag_bytes);
     valid_lanes -= (flags & kValid) != 0;
@@ -102,10 +105,97 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
     // The last one to three pixels: padded with invalid points (confidence
     // 0), which count nowhere, and only the real pixels' results kept.
     CloudPoint block[4] = {};
-    float distance[4];
+    float distance[4], widen[4];
     const std::size_t rest = n - k;
     std::memcpy(block, points + k, rest * sizeof(CloudPoint));
-    const Ints4 flags = classify_four_pixels(block, g, distance);
+    const Ints4 flags = classify_four_pixels(block, g, distance, widen);
+    valid_lanes -= (flags & kValid) != 0;
+    plane_lanes -= (flags & kPlane) != 0;
+    for (std::size_t j = 0; j < rest; ++j) {
+      distance_out[k + j] = distance[j];
+      widen_out[k + j] = widen[j];
+      flags_out[k + j] = static_cast<std::uint8_t>(flags[j]);
+      gap_out[gap_count] = static_cast<std::int32_t>(k + j);
+      gap_count += (flags[j] & kGap) != 0;
+    }
+  }
+  for (int j = 0; j < 4; ++j) {
+    valid_count += static_cast<std::size_t>(valid_lanes[j]);
+    plane_inliers += static_cast<std::size_t>(plane_lanes[j]);
+  }
+  ws.gap.set_size(gap_count);
+  *valid_pixels = static_cast<std::uint32_t>(valid_count);
+  return static_cast<std::uint32_t>(plane_inliers);
+}
+
+void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws) {
+  std::memcpy(ws.plane_distance_m.get(), ws.signed_distance_m.get(), cloud.size() * sizeof(float));
+}
+
+namespace {
+
+// Four pixels of the shifted pass: the dominant plane's distance s0
+// (-infinity where invalid, which every comparison below but "valid" keeps
+// so) moved by the mount's offset.
+Ints4 classify_four_shifted(const float* plane_distance_m, const float* widen_m,
+                            const GapTestLimits& g, float offset_m, float* distance_m) {
+  Floats4 s0, widen;
+  std::memcpy(&s0, plane_distance_m, sizeof s0);
+  std::memcpy(&widen, widen_m, sizeof widen);
+  const Floats4 s = s0 - offset_m;
+  std::memcpy(distance_m, &s, sizeof s);
+  const Floats4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
+  const Ints4 valid = s0 > zero - std::numeric_limits<float>::infinity();
+  const Floats4 abs_s0 = s0 < zero ? -s0 : s0;
+  const Ints4 on_plane = valid & (abs_s0 < g.plane_inlier_m);
+  const Ints4 on_wall = valid & (s < g.wall_tolerance_m);
+  const Ints4 in_gap = valid & (s >= g.gap_lo_m - widen) & (s <= g.gap_hi_m + widen);
+  constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap,
+                         kWall = kFlagWall;
+  return (valid & kValid) | (on_plane & kPlane) | (in_gap & kGap) | (on_wall & kWall);
+}
+
+}  // namespace
+
+std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                   float offset_m, Workspace& ws, std::uint32_t* valid_pixels) {
+  GapTestLimits g{};
+  g.gap_lo_m = gap_min_m(cfg);
+  g.gap_hi_m = gap_max_m(cfg);
+  g.plane_inlier_m = cfg.plane_inlier_m;
+  g.wall_tolerance_m = cfg.wall_tolerance_m;
+  const std::size_t n = cloud.size();
+  const float* plane_distance = ws.plane_distance_m.get();
+  const float* widen = ws.gap_widen_m.get();
+  float* distance_out = ws.signed_distance_m.get();
+  std::uint8_t* flags_out = ws.flags.get();
+  std::int32_t* gap_out = ws.gap.begin();
+  std::size_t valid_count = 0, gap_count = 0, plane_inliers = 0;
+  Ints4 valid_lanes = {0, 0, 0, 0}, plane_lanes = {0, 0, 0, 0};
+  constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap;
+  std::size_t k = 0;
+  for (; k + 4 <= n; k += 4) {
+    const Ints4 flags =
+        classify_four_shifted(plane_distance + k, widen + k, g, offset_m, distance_out + k);
+    const Bytes4 flag_bytes = __builtin_convertvector(flags, Bytes4);
+    std::memcpy(flags_out + k, &flag_bytes, sizeof flag_bytes);
+    valid_lanes -= (flags & kValid) != 0;
+    plane_lanes -= (flags & kPlane) != 0;
+    const Ints4 gap_bits = flags & kGap;
+    if ((gap_bits[0] | gap_bits[1] | gap_bits[2] | gap_bits[3]) == 0) continue;
+    for (int j = 0; j < 4; ++j) {
+      gap_out[gap_count] = static_cast<std::int32_t>(k + j);
+      gap_count += gap_bits[j] != 0;
+    }
+  }
+  if (k < n) {
+    // The last one to three pixels, padded with invalid ones.
+    const float inf = std::numeric_limits<float>::infinity();
+    float block_distance[4] = {-inf, -inf, -inf, -inf}, block_widen[4] = {}, distance[4];
+    const std::size_t rest = n - k;
+    std::memcpy(block_distance, plane_distance + k, rest * sizeof(float));
+    std::memcpy(block_widen, widen + k, rest * sizeof(float));
+    const Ints4 flags = classify_four_shifted(block_distance, block_widen, g, offset_m, distance);
     valid_lanes -= (flags & kValid) != 0;
     plane_lanes -= (flags & kPlane) != 0;
     for (std::size_t j = 0; j < rest; ++j) {

@@ -187,6 +187,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   // they show.
   wall_ = plane.plane;
   out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
+  keep_plane_pass(cloud, ws_);
   mounts_ = find_mount_hypotheses(cloud, cfg_, ws_);
   out->counts.mount_hypotheses = mounts_.count;
 
@@ -269,7 +270,7 @@ void HandrailDetector::search_mount(const OrganizedCloud& cloud, const Plane& do
   search_mount_m_ = offset_m;
   wall_ = dominant;
   wall_.d -= offset_m;
-  if (run_gap_pass) gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
+  if (run_gap_pass) gap_distance_shifted(cloud, cfg_, offset_m, ws_, &out->counts.valid);
   search_on_mount(cloud, start_us, out);
 }
 

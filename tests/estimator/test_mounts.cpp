@@ -6,8 +6,10 @@
 #include <vector>
 
 #include "cmocka_cpp.hpp"
+#include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_types.hpp"
 #include "estimator/mount_surfaces.hpp"
+#include "synthetic_cloud.hpp"
 
 using namespace estimator;
 
@@ -135,6 +137,49 @@ void test_the_mount_under_a_bar(void**) {
   assert_false(find_mount_under_bar(m, cfg, -0.03f + kFront + 0.006f, 0.004f, &mount));
 }
 
+// The searches on other mounts shift the first pass's distances instead of
+// reading the cloud again: the same flags (the plane's own inliers apart),
+// gap list and distances as a full pass against the shifted wall.
+void test_shifted_pass_equals_a_full_pass(void**) {
+  testing_support::SyntheticScene scene;
+  scene.cylinders.push_back(testing_support::vertical_bar(0.6, 0.074, 0.3, 0.0095));
+  scene.noise_m = 0.002;
+  std::vector<CloudPoint> pts;
+  OrganizedCloud cloud = testing_support::render(scene, &pts, 3);
+  pts[17].confidence = 0;  // an invalid pixel and a NaN one
+  pts[400].z_m = NAN;
+  cloud.points = pts.data();
+  DetectorConfig cfg;
+  cfg.max_width = 160;
+  cfg.max_height = 120;
+  Plane wall;
+  wall.normal = Eigen::Vector3f(0, 0, -1);
+  wall.d = 0.6f;
+  Workspace shifted(cloud.size()), full(cloud.size());
+  std::uint32_t valid_shifted = 0, valid_full = 0;
+  gap_distance_test(cloud, cfg, wall, shifted, &valid_shifted);
+  keep_plane_pass(cloud, shifted);
+  const float offset = 0.013f;
+  gap_distance_shifted(cloud, cfg, offset, shifted, &valid_shifted);
+  Plane moved = wall;
+  moved.d -= offset;
+  gap_distance_test(cloud, cfg, moved, full, &valid_full);
+  assert_int_equal(valid_shifted, valid_full);
+  assert_int_equal(shifted.gap.size(), full.gap.size());
+  assert_true(full.gap.size() > 100);  // the bar is in the window
+  for (std::size_t k = 0; k < full.gap.size(); ++k) assert_int_equal(shifted.gap[k], full.gap[k]);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const int without_plane = ~static_cast<int>(kFlagPlane) & 0xff;
+    assert_int_equal(shifted.flags[i] & without_plane, full.flags[i] & without_plane);
+    const float a = shifted.signed_distance_m[i], b = full.signed_distance_m[i];
+    if (std::isinf(b)) {
+      assert_true(std::isinf(a) && a < 0.0f);
+    } else {
+      assert_near(a, b, 1e-6);
+    }
+  }
+}
+
 void test_iss_lengths_are_matched_by_ratio(void**) {
   const DetectorConfig cfg;  // the station's four handrails and the module rail
   struct Case {
@@ -196,6 +241,7 @@ int main() {
       cmocka_unit_test(test_a_small_surface_is_no_surface),
       cmocka_unit_test(test_huge_and_not_finite_distances_are_ignored),
       cmocka_unit_test(test_the_mount_under_a_bar),
+      cmocka_unit_test(test_shifted_pass_equals_a_full_pass),
       cmocka_unit_test(test_iss_lengths_are_matched_by_ratio),
       cmocka_unit_test(test_one_configured_length_without_types),
       cmocka_unit_test(test_bad_mount_and_type_settings_are_named),

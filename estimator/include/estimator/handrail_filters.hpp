@@ -19,6 +19,17 @@ namespace estimator {
 std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
                                 const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels);
 
+// The same pass against the wall offset_m from the dominant plane along its
+// normal (a mount on a rack wall), from what the pass against the dominant
+// plane kept (ws.plane_distance_m, ws.gap_widen_m: keep_plane_pass()
+// first), without reading the cloud again. Same outputs; kFlagPlane and
+// the returned count stay the dominant plane's.
+std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                   float offset_m, Workspace& ws, std::uint32_t* valid_pixels);
+// Keeps the last gap distance pass's distances (made against the dominant
+// plane) for gap_distance_shifted().
+void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws);
+
 // Cross point test (eqs. 2, 3): both probes to either side of the pixel, in
 // image x or in image y, land on the wall. Probe offsets widen on the side
 // where the wall's tilt would put a leg. ws.gap -> ws.cross, and the

@@ -59,8 +59,13 @@ struct Workspace {
 
   std::size_t max_pixels;
   std::unique_ptr<float[]> signed_distance_m;  // to the wall; -infinity where not kFlagValid
-  std::unique_ptr<std::uint8_t[]> flags;       // PixelFlag bits
-  std::unique_ptr<float[]> line_t_m;           // position along a line
+  // The gap distance pass against the dominant plane, kept for the searches
+  // on other mounts (the same distances, shifted): the distances, and each
+  // pixel's widening of the gap window (twice its bounded noise).
+  std::unique_ptr<float[]> plane_distance_m;
+  std::unique_ptr<float[]> gap_widen_m;
+  std::unique_ptr<std::uint8_t[]> flags;  // PixelFlag bits
+  std::unique_ptr<float[]> line_t_m;      // position along a line
   IndexList sample;  // valid pixels at a fixed stride, for the wall and the pixel scale
   IndexList gap;
   IndexList cross;
