@@ -103,6 +103,10 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
 // heights (at 1.2 m the noise is near a centimetre).
 bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexList& inliers,
                                      CenterLine* line) const {
+  if (strict_mount_) {
+    line->mount_offset_m = search_mount_m_;
+    return bar_front_height_test(cfg_, *line);
+  }
   double noise_sum = 0.0;
   for (std::int32_t i : inliers) {
     const float noise = cloud.points[i].noise_m;
@@ -112,10 +116,6 @@ bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexLis
       inliers.empty() ? 0.0f : static_cast<float>(noise_sum / static_cast<double>(inliers.size()));
   const float tolerance =
       cfg_.front_height_tolerance_m + std::fmin(0.5f * mean_noise, kMaxNoiseWidening_m);
-  if (strict_mount_) {
-    line->mount_offset_m = search_mount_m_;
-    return bar_front_height_test(cfg_, *line);
-  }
   const float front_m = line->front_height_m + search_mount_m_;
   float mount_m = 0.0f;
   if (!find_mount_under_bar(mounts_, cfg_, front_m, tolerance, &mount_m)) return false;
