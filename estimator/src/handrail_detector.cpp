@@ -168,6 +168,25 @@ void HandrailDetector::remove_rejected_line(LineVerdict verdict, const LineModel
   }
 }
 
+// Within 45 deg of the gripper's angle in the image (the paper's psi_p:
+// 0 = along image y), from the bar's centre and a point along its axis.
+bool HandrailDetector::along_gripper(const HandrailDetection& d) const {
+  const Eigen::Vector3f a = d.p_cam_center, b = d.p_cam_center + 0.1f * d.axis();
+  if (!(a.z() > 0.0f && b.z() > 0.0f)) return false;
+  const float dx = b.x() / b.z() - a.x() / a.z(), dy = b.y() / b.z() - a.y() / a.z();
+  const float psi_rad = std::atan2(std::fabs(dx), std::fabs(dy));
+  return std::fabs(psi_rad - cfg_.gripper_angle_rad) <= kQuarterPi;
+}
+
+// The better of two finds over mounts: along the gripper first, then more
+// line inliers.
+bool HandrailDetector::better_find(const HandrailDetection& a, const HandrailDetection& b) const {
+  if (b.status != DetectStatus::kFound) return true;
+  const bool a_along = along_gripper(a), b_along = along_gripper(b);
+  if (a_along != b_along) return a_along;
+  return a.inliers > b.inliers;
+}
+
 void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t start_us,
                                     HandrailDetection* out) {
   scale_ = estimate_pixel_scale(cloud, ws_.sample);
@@ -199,7 +218,10 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   // with at least mount_accept_inliers line inliers ends the search; a
   // weaker one (a fragment, or a far bar) is kept while the others run, and
   // the best supported wins: on a wrong mount the real bar fails the height
-  // tests, while a short piece of clutter may pass them. A frame with none
+  // tests, while a short piece of clutter may pass them. As in Algorithm 1,
+  // a find within 45 deg of the gripper's angle beats one across it (a cable
+  // crossing the view on the dominant plane must not hide the rail on its
+  // seat track), and only such a find ends the search. A frame with none
   // reports what the flat-wall search found (its status and counts).
   constexpr std::uint32_t kDominant = kMaxMountHypotheses;
   std::uint32_t order[kMaxMountHypotheses + 1];
@@ -239,11 +261,10 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
       out->counts.mounts_tried = tried;
       return;
     }
-    if (attempt.status == DetectStatus::kFound &&
-        (best.status != DetectStatus::kFound || attempt.inliers > best.inliers)) {
+    if (attempt.status == DetectStatus::kFound && better_find(attempt, best)) {
       best = attempt;
       best_slot = slot;
-      if (attempt.inliers >= cfg_.mount_accept_inliers) break;
+      if (attempt.inliers >= cfg_.mount_accept_inliers && along_gripper(attempt)) break;
     }
     if (over_budget(start_us)) break;
   }

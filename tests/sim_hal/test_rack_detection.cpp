@@ -96,6 +96,27 @@ void test_handrail_on_a_seat_track_is_found_and_seated(void**) {
   assert_int_equal(named, both_ends);
 }
 
+// A cable crossing the view on the rack face passes every test there, with
+// many inliers; the rail on its seat track, along the gripper's angle (90
+// deg: horizontal in the image), must still be the one found, as Algorithm 1
+// selects by the gripper's angle.
+void test_cable_across_the_gripper_does_not_hide_the_rail(void**) {
+  const sim_hal::Scenario sc = load("rack-clutter-horizontal-21-5.json");
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(sc.gripper_angle_deg * M_PI / 180.0);
+  assert_near(cfg.gripper_angle_rad, M_PI / 2, 1e-6);
+  estimator::HandrailDetector detector(cfg);
+  Rendered r;
+  for (std::size_t f = 1; f <= 18; f += 3) {
+    render(sc, f, &r);
+    assert_false(r.truth.handrails.empty());
+    const estimator::HandrailDetection d = detector.detect(r.cloud);
+    assert_int_equal(static_cast<int>(d.status), static_cast<int>(estimator::DetectStatus::kFound));
+    assert_true(off_line_m(d, r.truth.handrails[0]) < 0.02);
+    assert_true(axis_error_deg(d, r.truth.handrails[0]) < 5.0);
+  }
+}
+
 void test_rack_walls_without_a_handrail_give_nothing(void**) {
   const sim_hal::Scenario sc = load("rack-no-handrail-corner.json");
   estimator::HandrailDetector detector{estimator::DetectorConfig{}};
@@ -137,6 +158,7 @@ void test_searching_mounts_allocates_nothing(void**) {
 int main() {
   const CMUnitTest tests[] = {
       cmocka_unit_test(test_handrail_on_a_seat_track_is_found_and_seated),
+      cmocka_unit_test(test_cable_across_the_gripper_does_not_hide_the_rail),
       cmocka_unit_test(test_rack_walls_without_a_handrail_give_nothing),
       cmocka_unit_test(test_searching_mounts_allocates_nothing),
   };

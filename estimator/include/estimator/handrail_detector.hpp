@@ -66,6 +66,10 @@ class HandrailDetector {
   // The front-height test against the surfaces in view; moves the line
   // onto the mount it finds.
   bool seat_on_mount(const OrganizedCloud& cloud, const IndexList& inliers, CenterLine* line) const;
+  // Whether a find lies within 45 deg of the gripper's angle in the image,
+  // and which of two finds over mounts is better.
+  bool along_gripper(const HandrailDetection& d) const;
+  bool better_find(const HandrailDetection& a, const HandrailDetection& b) const;
   // Takes a rejected line's points out of the search.
   void remove_rejected_line(LineVerdict verdict, const LineModel& refined, const CenterLine& line,
                             IndexList& active);
