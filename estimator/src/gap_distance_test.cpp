@@ -61,79 +61,6 @@ Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* d
   return (valid & kValid) | (on_plane & kPlane) | (in_gap & kGap) | (on_wall & kWall);
 }
 
-}  // namespace
-
-std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels) {
-  const GapTestLimits g{wall.normal.x(),    wall.normal.y(),     wall.normal.z(), wall.d,
-                        cfg.min_range_m,    cfg.max_range_m,     gap_min_m(cfg),  gap_max_m(cfg),
-                        cfg.plane_inlier_m, cfg.wall_tolerance_m};
-  const std::size_t n = cloud.size();
-  // Invalid pixels are scattered over a ToF frame, so the gap list is built
-  // without branches: every index is written and the count advances only
-  // when the pixel belongs (the list has a slot per pixel). An invalid
-  // pixel's distance is -infinity, so that "raised off the wall" is one
-  // comparison that an invalid pixel always fails. The outputs are locals:
-  // byte stores through a member could alias anything and force reloads.
-  const CloudPoint* points = cloud.points;
-  float* distance_out = ws.signed_distance_m.get();
-  float* widen_out = ws.gap_widen_m.get();
-  std::uint8_t* flags_out = ws.flags.get();
-  std::int32_t* gap_out = ws.gap.begin();
-  std::size_t valid_count = 0, gap_count = 0, plane_inliers = 0;
-  // Lane-wise counts (a true lane is -1, so subtracting counts it); a block
-  // of four is at most 4 per lane, so 2^31 / 4 pixels cannot overflow.
-  Ints4 valid_lanes = {0, 0, 0, 0}, plane_lanes = {0, 0, 0, 0};
-  constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap;
-  std::size_t k = 0;
-  for (; k + 4 <= n; k += 4) {
-    const Ints4 flags = classify_four_pixels(points + k, g, distance_out + k, widen_out + k);
-    const Bytes4 flag_bytes = __builtin_convertvector(flags, Bytes4);
-    std::memcpy(flags_out + k, &flag_bytes, sizeof flag_bytes);
-    valid_lanes -= (flags & kValid) != 0;
-    plane_lanes -= (flags & kPlane) != 0;
-    // The gap set is a tenth of a frame and comes in patches: most blocks
-    // have none of it, and the branch is well predicted.
-    const Ints4 gap_bits = flags & kGap;
-    if ((gap_bits[0] | gap_bits[1] | gap_bits[2] | gap_bits[3]) == 0) continue;
-    for (int j = 0; j < 4; ++j) {
-      gap_out[gap_count] = static_cast<std::int32_t>(k + j);
-      gap_count += gap_bits[j] != 0;
-    }
-  }
-  if (k < n) {
-    // The last one to three pixels: padded with invalid points (confidence
-    // 0), which count nowhere, and only the real pixels' results kept.
-    CloudPoint block[4] = {};
-    float distance[4], widen[4];
-    const std::size_t rest = n - k;
-    std::memcpy(block, points + k, rest * sizeof(CloudPoint));
-    const Ints4 flags = classify_four_pixels(block, g, distance, widen);
-    valid_lanes -= (flags & kValid) != 0;
-    plane_lanes -= (flags & kPlane) != 0;
-    for (std::size_t j = 0; j < rest; ++j) {
-      distance_out[k + j] = distance[j];
-      widen_out[k + j] = widen[j];
-      flags_out[k + j] = static_cast<std::uint8_t>(flags[j]);
-      gap_out[gap_count] = static_cast<std::int32_t>(k + j);
-      gap_count += (flags[j] & kGap) != 0;
-    }
-  }
-  for (int j = 0; j < 4; ++j) {
-    valid_count += static_cast<std::size_t>(valid_lanes[j]);
-    plane_inliers += static_cast<std::size_t>(plane_lanes[j]);
-  }
-  ws.gap.set_size(gap_count);
-  *valid_pixels = static_cast<std::uint32_t>(valid_count);
-  return static_cast<std::uint32_t>(plane_inliers);
-}
-
-void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws) {
-  std::memcpy(ws.plane_distance_m.get(), ws.signed_distance_m.get(), cloud.size() * sizeof(float));
-}
-
-namespace {
-
 // Four pixels of the shifted pass: the dominant plane's distance s0
 // (-infinity where invalid, which every comparison below but "valid" keeps
 // so) moved by the mount's offset.
@@ -155,32 +82,35 @@ Ints4 classify_four_shifted(const float* plane_distance_m, const float* widen_m,
   return (valid & kValid) | (on_plane & kPlane) | (in_gap & kGap) | (on_wall & kWall);
 }
 
-}  // namespace
-
-std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                   float offset_m, Workspace& ws, std::uint32_t* valid_pixels) {
-  GapTestLimits g{};
-  g.gap_lo_m = gap_min_m(cfg);
-  g.gap_hi_m = gap_max_m(cfg);
-  g.plane_inlier_m = cfg.plane_inlier_m;
-  g.wall_tolerance_m = cfg.wall_tolerance_m;
-  const std::size_t n = cloud.size();
-  const float* plane_distance = ws.plane_distance_m.get();
-  const float* widen = ws.gap_widen_m.get();
-  float* distance_out = ws.signed_distance_m.get();
+// The pass over every pixel, four at a time: `block(k)` classifies pixels
+// k..k+3 (writing their distances), `tail(k, rest)` the last one to three,
+// padded with invalid pixels (writing only the real ones' distances). Here
+// the flags are stored, the lanes counted and the gap list built.
+//
+// Invalid pixels are scattered over a ToF frame, so the gap list is built
+// without branches: every index is written and the count advances only
+// when the pixel belongs (the list has a slot per pixel). The outputs are
+// locals: byte stores through a member could alias anything and force
+// reloads.
+template <class Block, class Tail>
+std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pixels, Block block,
+                           Tail tail) {
   std::uint8_t* flags_out = ws.flags.get();
   std::int32_t* gap_out = ws.gap.begin();
   std::size_t valid_count = 0, gap_count = 0, plane_inliers = 0;
+  // Lane-wise counts (a true lane is -1, so subtracting counts it); a block
+  // of four is at most 4 per lane, so 2^31 / 4 pixels cannot overflow.
   Ints4 valid_lanes = {0, 0, 0, 0}, plane_lanes = {0, 0, 0, 0};
   constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap;
   std::size_t k = 0;
   for (; k + 4 <= n; k += 4) {
-    const Ints4 flags =
-        classify_four_shifted(plane_distance + k, widen + k, g, offset_m, distance_out + k);
+    const Ints4 flags = block(k);
     const Bytes4 flag_bytes = __builtin_convertvector(flags, Bytes4);
     std::memcpy(flags_out + k, &flag_bytes, sizeof flag_bytes);
     valid_lanes -= (flags & kValid) != 0;
     plane_lanes -= (flags & kPlane) != 0;
+    // The gap set is a tenth of a frame and comes in patches: most blocks
+    // have none of it, and the branch is well predicted.
     const Ints4 gap_bits = flags & kGap;
     if ((gap_bits[0] | gap_bits[1] | gap_bits[2] | gap_bits[3]) == 0) continue;
     for (int j = 0; j < 4; ++j) {
@@ -189,17 +119,11 @@ std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorCo
     }
   }
   if (k < n) {
-    // The last one to three pixels, padded with invalid ones.
-    const float inf = std::numeric_limits<float>::infinity();
-    float block_distance[4] = {-inf, -inf, -inf, -inf}, block_widen[4] = {}, distance[4];
     const std::size_t rest = n - k;
-    std::memcpy(block_distance, plane_distance + k, rest * sizeof(float));
-    std::memcpy(block_widen, widen + k, rest * sizeof(float));
-    const Ints4 flags = classify_four_shifted(block_distance, block_widen, g, offset_m, distance);
+    const Ints4 flags = tail(k, rest);
     valid_lanes -= (flags & kValid) != 0;
     plane_lanes -= (flags & kPlane) != 0;
     for (std::size_t j = 0; j < rest; ++j) {
-      distance_out[k + j] = distance[j];
       flags_out[k + j] = static_cast<std::uint8_t>(flags[j]);
       gap_out[gap_count] = static_cast<std::int32_t>(k + j);
       gap_count += (flags[j] & kGap) != 0;
@@ -212,6 +136,66 @@ std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorCo
   ws.gap.set_size(gap_count);
   *valid_pixels = static_cast<std::uint32_t>(valid_count);
   return static_cast<std::uint32_t>(plane_inliers);
+}
+
+}  // namespace
+
+std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels) {
+  const GapTestLimits g{wall.normal.x(),    wall.normal.y(),     wall.normal.z(), wall.d,
+                        cfg.min_range_m,    cfg.max_range_m,     gap_min_m(cfg),  gap_max_m(cfg),
+                        cfg.plane_inlier_m, cfg.wall_tolerance_m};
+  // An invalid pixel's distance is -infinity, so that "raised off the wall"
+  // is one comparison that an invalid pixel always fails.
+  const CloudPoint* points = cloud.points;
+  float* distance_out = ws.signed_distance_m.get();
+  float* widen_out = ws.gap_widen_m.get();
+  const auto block = [&](std::size_t k) {
+    return classify_four_pixels(points + k, g, distance_out + k, widen_out + k);
+  };
+  const auto tail = [&](std::size_t k, std::size_t rest) {
+    // Padded with invalid points (confidence 0), which count nowhere.
+    CloudPoint padded[4] = {};
+    float distance[4], widen[4];
+    std::memcpy(padded, points + k, rest * sizeof(CloudPoint));
+    const Ints4 flags = classify_four_pixels(padded, g, distance, widen);
+    for (std::size_t j = 0; j < rest; ++j) {
+      distance_out[k + j] = distance[j];
+      widen_out[k + j] = widen[j];
+    }
+    return flags;
+  };
+  return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail);
+}
+
+void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws) {
+  std::memcpy(ws.plane_distance_m.get(), ws.signed_distance_m.get(), cloud.size() * sizeof(float));
+}
+
+std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                   float offset_m, Workspace& ws, std::uint32_t* valid_pixels) {
+  GapTestLimits g{};
+  g.gap_lo_m = gap_min_m(cfg);
+  g.gap_hi_m = gap_max_m(cfg);
+  g.plane_inlier_m = cfg.plane_inlier_m;
+  g.wall_tolerance_m = cfg.wall_tolerance_m;
+  const float* plane_distance = ws.plane_distance_m.get();
+  const float* widen = ws.gap_widen_m.get();
+  float* distance_out = ws.signed_distance_m.get();
+  const auto block = [&](std::size_t k) {
+    return classify_four_shifted(plane_distance + k, widen + k, g, offset_m, distance_out + k);
+  };
+  const auto tail = [&](std::size_t k, std::size_t rest) {
+    // Padded with invalid pixels (-infinity).
+    const float inf = std::numeric_limits<float>::infinity();
+    float padded_distance[4] = {-inf, -inf, -inf, -inf}, padded_widen[4] = {}, distance[4];
+    std::memcpy(padded_distance, plane_distance + k, rest * sizeof(float));
+    std::memcpy(padded_widen, widen + k, rest * sizeof(float));
+    const Ints4 flags = classify_four_shifted(padded_distance, padded_widen, g, offset_m, distance);
+    for (std::size_t j = 0; j < rest; ++j) distance_out[k + j] = distance[j];
+    return flags;
+  };
+  return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail);
 }
 
 }  // namespace estimator
