@@ -31,10 +31,34 @@ struct Errors {
   double rms_att_deg() const { return n ? std::sqrt(sum_sq_att / n) / locsim::kDeg : 0.0; }
 };
 
-// Runs a scenario; errors are collected after t_settle_s.
-Errors run_scenario(const SimConfig& sc, double t_settle_s, LocalizationFilter* out = nullptr) {
+// The true handrail pose off by a survey error: position_m along each axis,
+// attitude_rad about the wall normal and the bar.
+HandrailMap survey_of(const Sim& sim, double position_m, double attitude_rad, double sigma_m,
+                      double sigma_rad) {
+  HandrailMap m;
+  m.T_world_handrail = sim.T_world_handrail();
+  m.T_world_handrail.translation() += Eigen::Vector3d::Constant(position_m);
+  m.T_world_handrail.linear() =
+      Eigen::AngleAxisd(attitude_rad, Eigen::Vector3d(1.0, 0.0, 1.0).normalized()) *
+      m.T_world_handrail.linear();
+  m.position_sigma_m = sigma_m;
+  m.attitude_sigma_rad = sigma_rad;
+  return m;
+}
+
+// Runs a scenario; errors are collected after t_settle_s. With survey_error
+// (position m, attitude rad, both as survey_of) the filter is given the
+// handrail's surveyed pose with that error and a survey sigma of 2 mm and
+// 0.1 deg.
+Errors run_scenario(const SimConfig& sc, double t_settle_s, LocalizationFilter* out = nullptr,
+                    const Eigen::Vector2d* survey_error = nullptr) {
   Sim sim(sc);
   auto f = std::make_unique<LocalizationFilter>(locsim::sim_filter_config(sc));
+  if (survey_error) {
+    assert_int_equal(static_cast<int>(f->set_handrail_survey(survey_of(
+                         sim, survey_error->x(), survey_error->y(), 0.002, 0.1 * locsim::kDeg))),
+                     static_cast<int>(UpdateStatus::kAccepted));
+  }
   Errors e;
   locsim::run(
       sim, *f,
@@ -86,6 +110,62 @@ void test_converges_with_handrail_updates(void**) {
   assert_true(e.max_rel < 0.012);
   assert_true(e.rms_att_deg() < 0.3);
   assert_true(c.count(MeasurementKind::kHandrailEnds, UpdateStatus::kAccepted) > 150);
+}
+
+// With the handrail's surveyed pose the handrail places the robot in the
+// world: the world error falls from the GP's bias (20 mm RMS with a map
+// from sightings, test above) to the survey's error and the detections'.
+void test_surveyed_map_gives_the_world_pose(void**) {
+  SimConfig sc;
+  sc.seed = 11;
+  auto f = std::make_unique<LocalizationFilter>();
+  const Eigen::Vector2d survey_error(0.001, 0.05 * locsim::kDeg);
+  const Errors e = run_scenario(sc, 10.0, f.get(), &survey_error);
+  const FilterCounters& c = f->counters();
+  std::printf(
+      "  surveyed map (off by 1 mm per axis, 0.05 deg): world RMS %.2f mm (max %.2f), relative "
+      "to the true handrail's frame through the survey %.2f mm; handrail accepted %u rejected "
+      "%u\n",
+      1e3 * e.rms_world(), 1e3 * e.max_world, 1e3 * e.rms_rel(),
+      c.count(MeasurementKind::kHandrailEnds, UpdateStatus::kAccepted),
+      c.rejected(MeasurementKind::kHandrailEnds));
+  assert_int_equal(e.bad_health, 0);
+  assert_true(f->handrail_map().surveyed);
+  assert_int_equal(c.count(MeasurementKind::kHandrailEnds, UpdateStatus::kMapSighting), 0);
+  assert_true(c.count(MeasurementKind::kHandrailEnds, UpdateStatus::kAccepted) > 150);
+  assert_true(e.rms_world() < 0.006);
+  assert_true(e.max_world < 0.015);
+}
+
+// A survey is checked before it is taken, and stays the map wherever a map
+// from sightings would be dropped.
+void test_survey_is_checked_and_kept(void**) {
+  SimConfig sc;
+  Sim sim(sc);
+  auto f = std::make_unique<LocalizationFilter>();
+  HandrailMap bad = survey_of(sim, 0.0, 0.0, 0.002, 0.001);
+  bad.T_world_handrail.translation().x() = std::nan("");
+  assert_int_equal(static_cast<int>(f->set_handrail_survey(bad)),
+                   static_cast<int>(UpdateStatus::kRejectedNotFinite));
+  bad = survey_of(sim, 0.0, 0.0, 0.002, 0.001);
+  bad.T_world_handrail.linear() *= 1.01;  // not a rotation
+  assert_int_equal(static_cast<int>(f->set_handrail_survey(bad)),
+                   static_cast<int>(UpdateStatus::kRejectedInvalid));
+  bad = survey_of(sim, 0.0, 0.0, -0.002, 0.001);
+  assert_int_equal(static_cast<int>(f->set_handrail_survey(bad)),
+                   static_cast<int>(UpdateStatus::kRejectedInvalid));
+  assert_false(f->handrail_map().valid);
+  const HandrailMap good = survey_of(sim, 0.0, 0.0, 0.002, 0.001);
+  assert_int_equal(static_cast<int>(f->set_handrail_survey(good)),
+                   static_cast<int>(UpdateStatus::kAccepted));
+  assert_true(f->handrail_map().valid && f->handrail_map().surveyed);
+  f->reset_handrail_map();
+  assert_true(f->handrail_map().valid && f->handrail_map().surveyed);
+  f->reset();
+  assert_true(f->handrail_map().valid && f->handrail_map().surveyed);
+  assert_true(f->handrail_map().T_world_handrail.isApprox(good.T_world_handrail));
+  f->clear_handrail_survey();
+  assert_false(f->handrail_map().valid);
 }
 
 void test_gp_only_stays_at_gp_bias(void**) {
@@ -222,6 +302,8 @@ void test_late_measurements_equal_on_time(void**) {
 int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_converges_with_handrail_updates),
+      cmocka_unit_test(test_surveyed_map_gives_the_world_pose),
+      cmocka_unit_test(test_survey_is_checked_and_kept),
       cmocka_unit_test(test_gp_only_stays_at_gp_bias),
       cmocka_unit_test(test_along_bar_uncertainty_grows_with_no_end_only),
       cmocka_unit_test(test_late_measurements_equal_on_time),

@@ -1,5 +1,7 @@
 #include "estimator/localization/handrail_map.hpp"
 
+#include <cmath>
+
 namespace estimator::localization {
 
 Eigen::Matrix3d flip_axis(const Eigen::Matrix3d& R_x_handrail) {
@@ -7,6 +9,28 @@ Eigen::Matrix3d flip_axis(const Eigen::Matrix3d& R_x_handrail) {
   R.col(1) = -R.col(1);
   R.col(2) = -R.col(2);
   return R;
+}
+
+UpdateStatus check_survey(const HandrailMap& survey) {
+  const Eigen::Matrix3d& R = survey.T_world_handrail.linear();
+  const Eigen::Vector3d& p = survey.T_world_handrail.translation();
+  if (!R.allFinite() || !p.allFinite() || !std::isfinite(survey.position_sigma_m) ||
+      !std::isfinite(survey.attitude_sigma_rad)) {
+    return UpdateStatus::kRejectedNotFinite;
+  }
+  const bool rotation =
+      (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <= 1e-6 &&
+      R.determinant() > 0.0;
+  const bool in_range = p.norm() <= 1000.0 && survey.position_sigma_m >= 0.0 &&
+                        survey.position_sigma_m <= 1.0 && survey.attitude_sigma_rad >= 0.0 &&
+                        survey.attitude_sigma_rad <= 1.0;
+  return rotation && in_range ? UpdateStatus::kAccepted : UpdateStatus::kRejectedInvalid;
+}
+
+void HandrailMapBuilder::set_survey(const HandrailMap& survey) {
+  reset();
+  map_ = survey;
+  map_.valid = map_.surveyed = true;
 }
 
 void HandrailMapBuilder::reset() {

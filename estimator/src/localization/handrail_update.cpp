@@ -171,8 +171,15 @@ UpdateResult handrail_update(const LocalizationConfig& cfg, const ChiSquareGate&
   const bool no_end = s.state == HandrailState::kNoEnd;
   const int dim = no_end ? 2 : 3;
   const FeatureContext c = feature_context(map, *x, cfg.T_body_cam);
+  // A surveyed map's own uncertainty adds to every feature's: its position
+  // error in full, its attitude error times the feature's lever arm from
+  // the handrail's origin (both zero for a map from sightings).
+  const double map_var_m2 = map.position_sigma_m * map.position_sigma_m;
+  const double map_att_var = map.attitude_sigma_rad * map.attitude_sigma_rad;
   const auto sigma = [&](const HandrailFeature& f) {
-    return f.kind == FeatureKind::kBar ? cfg.bar_feature_sigma_m : cfg.wall_feature_sigma_m;
+    const double own_m =
+        f.kind == FeatureKind::kBar ? cfg.bar_feature_sigma_m : cfg.wall_feature_sigma_m;
+    return std::sqrt(own_m * own_m + map_var_m2 + map_att_var * f.p_handrail_m.squaredNorm());
   };
   // Each feature against the prior: a stray point is dropped before it can
   // pull the stack (the order of the features does not matter here).

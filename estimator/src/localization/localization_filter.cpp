@@ -49,6 +49,7 @@ void LocalizationFilter::reset() {
   history_.clear();
   store_.clear();
   map_.reset();
+  if (survey_.valid) map_.set_survey(survey_);
   ++map_generation_;
   last_ = UpdateResult{};
   initialized_ = lost_ = false;
@@ -61,8 +62,23 @@ void LocalizationFilter::reset_handrail_map() {
   drop_map();
 }
 
+UpdateStatus LocalizationFilter::set_handrail_survey(const HandrailMap& survey) {
+  const UpdateStatus st = check_survey(survey);
+  if (st != UpdateStatus::kAccepted) return st;
+  survey_ = survey;
+  survey_.valid = survey_.surveyed = true;
+  drop_map();
+  return st;
+}
+
+void LocalizationFilter::clear_handrail_survey() {
+  survey_ = HandrailMap{};
+  drop_map();
+}
+
 void LocalizationFilter::drop_map() {
   map_.reset();
+  if (survey_.valid) map_.set_survey(survey_);
   // Stored handrail updates made against the old map are skipped on a
   // re-propagation from now on.
   ++map_generation_;

@@ -15,6 +15,13 @@
 // built (the GP's bias, a few cm): the pose relative to the handrail, which
 // perching needs, is then as good as the handrail updates, while the pose in
 // the world stays as good as the GP.
+//
+// A surveyed map is given instead (the station's handrails sit at known rack
+// positions; the paper's table test had its handrail at a known place): the
+// handrail's world pose with the survey's uncertainty. The handrail then
+// places the robot in the world, to the survey's accuracy. Its uncertainty
+// enters each feature's residual noise (handrail_update.hpp); a surveyed
+// map is never rebuilt from sightings.
 #include <Eigen/Geometry>
 
 #include "estimator/localization/config.hpp"
@@ -24,8 +31,18 @@ namespace estimator::localization {
 
 struct HandrailMap {
   bool valid = false;
+  bool surveyed = false;  // given, not built from sightings
   Eigen::Isometry3d T_world_handrail = Eigen::Isometry3d::Identity();
+  // The survey's 1-sigma uncertainty, per axis (0 for a map from sightings,
+  // whose error is the filter's own at the time, already in its state).
+  double position_sigma_m = 0.0;
+  double attitude_sigma_rad = 0.0;
 };
+
+// kAccepted for a usable survey: T_world_handrail finite, a rotation (within
+// 1e-6) and within 1000 m; sigmas finite, 0 to 1 m and 0 to 1 rad.
+// Otherwise kRejectedNotFinite or kRejectedInvalid.
+UpdateStatus check_survey(const HandrailMap& survey);
 
 // The handrail frame turned by pi about its x axis (the wall normal): the
 // same bar with its axis the other way (y and z negated). A detector fixes
@@ -40,6 +57,8 @@ class HandrailMapBuilder {
   // the ones before and the count restarted from it.
   UpdateStatus add_sighting(const LocalizationConfig& cfg,
                             const Eigen::Isometry3d& T_world_handrail, bool* restarted);
+  // Installs a checked survey as the map (valid, surveyed).
+  void set_survey(const HandrailMap& survey);
   const HandrailMap& map() const { return map_; }
   int sightings() const { return count_; }
 

@@ -23,7 +23,9 @@
 //
 // With an end in view (BE, OE) every feature gives the 3-D residual of eq. 9
 // (noise sigma^2 I3); with no end (NE) the 2-D one of eq. 12 (sigma^2 I2: a
-// rotation of isotropic noise), the along-bar component dropped because the
+// rotation of isotropic noise; sigma^2 is the feature's plus, for a surveyed
+// map, the survey's position variance and its attitude variance times the
+// squared lever arm |^H p_j|^2), the along-bar component dropped because the
 // detection cannot place the bar along its axis. One improvement, on by
 // default (ne_reanchor_along_bar): before the NE residual the feature's
 // along-bar coordinate is replaced by the predicted one, so the dropped

@@ -53,7 +53,10 @@
 //     exists is kNoMap. With a map, each measurement is an update
 //     (handrail_update.hpp); map_reset_after_rejections gate rejections in a
 //     row drop the map (the handrail moved, or the map was wrong), and the
-//     next confident sightings build it again.
+//     next confident sightings build it again. A surveyed map
+//     (set_handrail_survey) replaces the sightings: it is the map from the
+//     start, and wherever a map would be dropped (those rejections, a
+//     relocalisation, reset_handrail_map, reset) the survey is put back.
 //   Bad input. Anything non-finite or malformed is rejected before it
 //     touches anything (kRejectedNotFinite, kRejectedInvalid,
 //     kRejectedOutOfRange for IMU samples beyond the sensor's range).
@@ -102,8 +105,15 @@ class LocalizationFilter {
   // Back to uninitialised (counters kept).
   void reset();
   // Forget the handrail map (a new perch target): the next confident
-  // sightings build it again.
+  // sightings build it again (or the survey is put back).
   void reset_handrail_map();
+  // The handrail's surveyed world pose and its uncertainty (handrail_map.hpp)
+  // as the map from now on, in place of its first sightings; stored
+  // handrail updates made against an earlier map are dropped from
+  // re-propagation. kAccepted, or check_survey()'s rejection (nothing
+  // changed). clear_handrail_survey(): back to maps from sightings.
+  UpdateStatus set_handrail_survey(const HandrailMap& survey);
+  void clear_handrail_survey();
 
   bool initialized() const { return initialized_; }
   bool lost() const { return lost_; }
@@ -151,6 +161,7 @@ class LocalizationFilter {
   ImuHistory history_;
   MeasurementStore store_;
   HandrailMapBuilder map_;
+  HandrailMap survey_;  // valid when a survey is set
   std::uint32_t map_generation_ = 0;
   FilterCounters counters_;
   UpdateResult last_;
