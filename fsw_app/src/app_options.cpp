@@ -64,6 +64,12 @@ std::optional<int> check_combination(Options* o, bool tasks_given) {
   if (!o->faults.empty() && !o->needs_sim_world()) {
     return usage_error("--fault needs --hal sim with the camera or arm task in this process");
   }
+  if (o->camera != "raw" && o->camera != "depth") return usage_error("--camera is raw or depth");
+  if (o->hal == "real" && (o->camera_given || !o->tof_calibration.empty())) {
+    return usage_error(
+        "--camera and --tof-calibration choose the simulated camera's path (--hal sim); with "
+        "--hal real the camera task plays --camera-replay");
+  }
   if (o->hal == "real" && o->runs(kCameraTask) && o->camera_replay.empty()) {
     return usage_error(
         "the Pico Flexx driver is not in this build yet: give the camera task recorded frames "
@@ -113,6 +119,12 @@ void print_usage(std::FILE* out) {
                "                        approach starts: servo-silent, gripper-overcurrent,\n"
                "                        occlude (1 s), corrupt-frames (5 frames), imu-silent\n"
                "                        (0.5 s), gp-jump (the GP pose 20 cm off from then on)\n"
+               "  --camera raw|depth    sim: the frames' path (default raw): the raw renderer's\n"
+               "                        phase frames through the robot's ToF processing, or\n"
+               "                        the depth renderer's frames\n"
+               "  --tof-calibration FILE sim, raw path: where the simulated unit writes its\n"
+               "                        calibration file, which the processing then reads\n"
+               "                        (default: a temporary file, removed at exit)\n"
                "  --gp-error M,DEG      sim: the general-purpose localizer's bias, metres and\n"
                "                        degrees (default 0.03,1); its direction turns slowly\n"
                "  --handrail iss|round  the handrail kind to look for (default from the config)\n"
@@ -151,7 +163,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
         "--lcm-url",         "--timeout",       "--duration",  "--log",
         "--summary-json",    "--fault",         "--budget-us", "--arm-port",
         "--gripper-port",    "--camera-replay", "--handrail",  "--tasks",
-        "--frames-from-log", "--gp-error"};
+        "--frames-from-log", "--gp-error",      "--camera",    "--tof-calibration"};
     bool known = false;
     for (const char* k : kWithValue) known = known || a == k;
     if (!known) return usage_error("unknown option \"" + a + "\"");
@@ -168,6 +180,11 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
     if (a == "--gripper-port") o->gripper_port = v;
     if (a == "--camera-replay") o->camera_replay = v;
     if (a == "--frames-from-log") o->frames_from_log = v;
+    if (a == "--tof-calibration") o->tof_calibration = v;
+    if (a == "--camera") {
+      o->camera = v;
+      o->camera_given = true;
+    }
     if (a == "--tasks") {
       std::string bad;
       if (!parse_tasks(v, &o->tasks, &bad)) {

@@ -37,6 +37,13 @@ struct Options {
   long budget_us = -1;
   std::string arm_port, gripper_port, camera_replay, handrail;
   bool quiet = false;
+  // sim: the camera's path to the estimator, "raw" (raw phase frames through
+  // the robot's ToF processing) or "depth" (the depth renderer); and where
+  // the simulated unit writes its calibration file for the processing to
+  // read (empty: a file of this process's in the temporary directory).
+  std::string camera = "raw";
+  bool camera_given = false;
+  std::string tof_calibration;
   // sim: the general-purpose localizer's bias (size; it turns slowly).
   double gp_bias_m = 0.03, gp_bias_deg = 1.0;
 
@@ -44,6 +51,12 @@ struct Options {
   // The simulated world (flyer, rendered camera, devices on ptys) is built
   // when a task here needs the simulated HAL's camera or devices.
   bool needs_sim_world() const { return hal == "sim" && (runs(kCameraTask) || runs(kArmTask)); }
+  // What the summary names as the frames' path: "raw", "depth", "replay",
+  // or "" when no camera task runs here.
+  std::string camera_path() const {
+    if (!runs(kCameraTask)) return "";
+    return hal == "sim" ? camera : "replay";
+  }
 };
 
 void print_usage(std::FILE* out);

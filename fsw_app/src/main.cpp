@@ -43,6 +43,7 @@
 #include "hal/linux_serial_port.hpp"
 #include "hal/realtime.hpp"
 #include "hal/use_case.hpp"
+#include "pico_flexx/raw_depth_pipeline.hpp"
 #include "replay_camera/pcd_replay_camera.hpp"
 #include "run_log.hpp"
 #include "run_signals.hpp"
@@ -192,9 +193,35 @@ int main(int argc, char** argv) {
   std::unique_ptr<hal::DepthCamera> owned_camera;
   hal::DepthCamera* camera = nullptr;
   fsw_app::LcmDepthCamera* lcm_camera = nullptr;
+  // The raw path's ToF processing (the robot's), on the unit's calibration
+  // file as the simulated camera wrote it.
+  std::unique_ptr<pico_flexx::RawDepthPipeline> tof_pipeline;
+  std::string tof_calibration_path = opt.tof_calibration;
   if (opt.runs(fsw_app::kCameraTask)) {
 #ifdef HRP_WITH_SIM
     if (world) camera = &world->camera();
+    if (world && opt.camera == "raw") {
+      if (tof_calibration_path.empty()) {
+        const char* tmp = std::getenv("TMPDIR");
+        tof_calibration_path = std::string(tmp && *tmp ? tmp : "/tmp") + "/fsw_app-tof-unit-" +
+                               std::to_string(getpid()) + ".json";
+      }
+      if (!world->camera().write_unit_calibration(tof_calibration_path, &error)) {
+        std::fprintf(stderr, "fsw_app: the simulated camera's calibration: %s\n", error.c_str());
+        return 2;
+      }
+      tof_pipeline = pico_flexx::open_raw_depth_pipeline(
+          tof_calibration_path, pico_flexx::PipelineConfig{}, clock, &error);
+      if (opt.tof_calibration.empty()) std::remove(tof_calibration_path.c_str());
+      if (!tof_pipeline) {
+        std::fprintf(stderr, "fsw_app: ToF calibration: %s\n", error.c_str());
+        return 2;
+      }
+      if (world->camera().set_raw_pipeline(tof_pipeline.get()) != hal::CameraStatus::kSuccess) {
+        std::fprintf(stderr, "fsw_app: the simulated camera refused the raw path\n");
+        return 1;
+      }
+    }
 #endif
     if (!sim) {
       const fsw_app::EstimatorTaskConfig defaults;
@@ -469,6 +496,7 @@ int main(int argc, char** argv) {
   if (camera_task) {
     summary.camera_longest_gap_ms = 1e-3 * static_cast<double>(camera_task->longest_gap_us());
   }
+  summary.camera_path = opt.camera_path();
   if (estimator_task) {
     summary.estimator_longest_latency_ms =
         1e-3 * static_cast<double>(estimator_task->counters().longest_latency_us);
@@ -477,6 +505,10 @@ int main(int argc, char** argv) {
   if (manager) manager->stop();
   if (arm_task) arm_task->stop();
   if (camera) (void)camera->stop_capture();
+  if (tof_pipeline) {
+    summary.tof = tof_pipeline->counts();
+    summary.tof_median_us = tof_pipeline->processing_median_us();
+  }
   if (estimator_task) {
     estimator_task->stop();
     estimator_task->publish_health();

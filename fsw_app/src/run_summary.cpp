@@ -17,6 +17,47 @@ const char* signal_name(int sig) {
 
 namespace {
 
+// The share of the processed pixels that came out valid (-1: none).
+double valid_pixel_share(const pico_flexx::PipelineCounts& c) {
+  std::uint64_t all = 0;
+  for (std::uint64_t n : c.pixels_by_state) all += n;
+  if (all == 0) return -1.0;
+  return static_cast<double>(c.pixels_by_state[static_cast<int>(tof::PixelState::kValid)]) /
+         static_cast<double>(all);
+}
+
+// Which path the frames took and, on the raw path, what processing cost.
+void print_camera(const RunSummary& s, std::FILE* out) {
+  if (s.camera_path.empty()) return;
+  if (!s.tof) {
+    std::fprintf(out, "  camera path         %s\n", s.camera_path.c_str());
+    return;
+  }
+  const pico_flexx::PipelineCounts& c = *s.tof;
+  std::fprintf(out,
+               "  camera path         %s: ToF processing median %.2f ms over %llu frames, %llu "
+               "dropped, %llu mostly invalid, %.1f %% of pixels valid\n",
+               s.camera_path.c_str(), 1e-3 * static_cast<double>(s.tof_median_us),
+               static_cast<unsigned long long>(c.frames_in),
+               static_cast<unsigned long long>(c.frames_dropped),
+               static_cast<unsigned long long>(c.frames_mostly_invalid),
+               100.0 * valid_pixel_share(c));
+}
+
+void write_camera_json(const RunSummary& s, std::FILE* f) {
+  const pico_flexx::PipelineCounts c = s.tof.value_or(pico_flexx::PipelineCounts{});
+  const long long none = -1;
+  std::fprintf(f,
+               "\"camera\": {\"path\": \"%s\", \"tof_median_us\": %lld, \"tof_frames\": %lld, "
+               "\"tof_frames_dropped\": %lld, \"tof_frames_mostly_invalid\": %lld, "
+               "\"tof_valid_pixel_share\": %.4f}, ",
+               s.camera_path.c_str(), static_cast<long long>(s.tof_median_us),
+               s.tof ? static_cast<long long>(c.frames_in) : none,
+               s.tof ? static_cast<long long>(c.frames_dropped) : none,
+               s.tof ? static_cast<long long>(c.frames_mostly_invalid) : none,
+               s.tof ? valid_pixel_share(c) : -1.0);
+}
+
 void print_frames(const RunSummary& s, std::FILE* out) {
   const hrp::estimator_health_t& h = s.health;
   std::fprintf(
@@ -27,6 +68,7 @@ void print_frames(const RunSummary& s, std::FILE* out) {
                "  deadline misses     %lld (budget %d us; processing median %d us, max %d us)\n",
                static_cast<long long>(h.deadline_misses), h.budget_us, h.processing_median_us,
                h.processing_max_us);
+  print_camera(s, out);
   if (s.camera_longest_gap_ms >= 0.0) {
     std::fprintf(out, "  frame pipeline      longest gap between frames %.0f ms",
                  s.camera_longest_gap_ms);
@@ -233,7 +275,9 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
                  "\"handrail_accepted\": %u, \"handrail_no_end_accepted\": %u, "
                  "\"handrail_rejected_gate\": %u, \"handrail_rejected_other\": %u, "
                  "\"handrail_unusable\": %llu, \"features_gated\": %u, \"map_resets\": %u, "
-                 "\"poses_published\": %llu}",
+                 "\"poses_published\": %llu, \"map_surveyed\": %s, \"handrail_holding\": %s, "
+                 "\"gp_fallback_accepted\": %llu, \"position_sigma_m\": %.5f, "
+                 "\"position_sigma_holding_m\": %.5f}",
                  r.initialized ? "true" : "false", r.map_valid ? "true" : "false", r.imu_propagated,
                  r.imu_gaps_bridged, r.imu_gaps_lost, r.imu_rejected,
                  static_cast<unsigned long long>(r.task.imu_seq_gaps), r.gp_accepted,
@@ -241,7 +285,10 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
                  r.gp_rejected_jump, r.gp_relocalized, r.gp_rejected_other, r.handrail_accepted,
                  r.handrail_no_end_accepted, r.handrail_rejected_gate, r.handrail_rejected_other,
                  static_cast<unsigned long long>(r.task.handrail_unusable), r.features_gated,
-                 r.map_resets, static_cast<unsigned long long>(r.task.poses_published));
+                 r.map_resets, static_cast<unsigned long long>(r.task.poses_published),
+                 r.map_surveyed ? "true" : "false", r.handrail_holding ? "true" : "false",
+                 static_cast<unsigned long long>(r.task.gp_fallback_accepted),
+                 r.task.position_sigma_m, r.task.position_sigma_holding_m);
   } else {
     std::fprintf(f, "\"filter\": null");
   }
@@ -285,6 +332,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
                static_cast<long long>(s.frames_published), s.log_failure.c_str(),
                static_cast<long long>(s.log_lost), s.stop.stopped ? "true" : "false", s.stop.signal,
                s.stop.at_rest ? "true" : "false");
+  write_camera_json(s, f);
   write_localization_json(s, f);
   write_inputs_json(s.inputs, f);
   std::fprintf(f, "}\n");

@@ -17,6 +17,7 @@
 #include "hrp/arm_state_t.hpp"
 #include "hrp/estimator_health_t.hpp"
 #include "hrp/input_health_t.hpp"
+#include "pico_flexx/raw_depth_pipeline.hpp"
 
 namespace fsw_app {
 
@@ -48,6 +49,11 @@ struct RunSummary {
   std::optional<dynamixel::BusCounters> servo_bus;
   std::optional<std::uint32_t> gripper_retries;
   double camera_longest_gap_ms = -1.0;
+  // The frames' path ("raw", "depth", "replay"; "" without a camera task
+  // here) and, on the raw path, the ToF processing's figures.
+  std::string camera_path;
+  std::optional<pico_flexx::PipelineCounts> tof;
+  std::int64_t tof_median_us = -1;
   double estimator_longest_latency_ms = -1.0;
   std::optional<LogPlayerCounts> replay;
   std::int64_t log_messages = -1;

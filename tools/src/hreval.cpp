@@ -19,7 +19,11 @@
 #include "estimator/handrail_detector.hpp"
 #include "eval_chart.hpp"
 #include "eval_metrics.hpp"
+#include "sim_camera_path.hpp"
 #include "sim_hal/scenario.hpp"
+
+// The flight configuration's use case (fsw_app/config/fsw_app.json).
+constexpr const char* kUseCase = "MODE_9_5FPS_2000";
 
 #ifndef HRP_SCENARIO_DIR
 #define HRP_SCENARIO_DIR "sim_hal/scenarios"
@@ -39,6 +43,11 @@ void usage(FILE* out) {
                "  --max-frames N    at most N frames per scenario (for a quick look)\n"
                "  --true-length     configure the detector for each scenario's first handrail's\n"
                "                    bar length alone (default: every ISS length)\n"
+               "  --camera depth|raw|both\n"
+               "                    the frames' path: the depth renderer (default), raw phase\n"
+               "                    frames through the robot's ToF processing, or both, the\n"
+               "                    report's tables on the depth path and a table of every\n"
+               "                    scenario's raw-path rates beside them\n"
                "  -h, --help        this text\n",
                HRP_SCENARIO_DIR);
 }
@@ -52,7 +61,16 @@ struct ScenarioResult {
   std::string name, kind;
   std::string surface;      // "flat wall", "rack wall", "Columbus"
   MethodTallies method[2];  // proposed, basic
+  // The raw path's processing (frames == 0 on the depth path).
+  pico_flexx::PipelineCounts tof;
+  std::int64_t tof_median_us = -1;
 };
+
+double valid_share(const pico_flexx::PipelineCounts& c) {
+  std::uint64_t all = 0;
+  for (std::uint64_t n : c.pixels_by_state) all += n;
+  return all ? static_cast<double>(c.pixels_by_state[0]) / static_cast<double>(all) : 0.0;
+}
 
 const char* kMethodNames[2] = {"proposed", "basic"};
 
@@ -127,12 +145,60 @@ void table2_rows(std::ostringstream& md, const ScenarioResult& r) {
   for (int m = 0; m < 2; ++m) row("**all**", kMethodNames[m], r.method[m].all);
 }
 
+// Issue #20: every scenario's proposed-method rates on the raw path beside
+// the depth path's, and what the ToF processing made of the raw frames.
+void raw_beside_depth(std::ostringstream& md, const std::vector<ScenarioResult>& depth,
+                      const std::vector<ScenarioResult>& raw) {
+  md << "\n## Raw path beside depth path (proposed method)\n\n"
+     << "Depth: the depth renderer's frames. Raw: the raw renderer's phase frames (MODE_9) "
+        "through the robot's ToF processing, on the calibration file the simulated unit wrote. "
+        "Difference in points of detection rate (target: within 1 point of the depth path). "
+        "Mostly invalid: frames with under half their pixels valid.\n\n"
+     << "| scenario | with target | detected depth | detected raw | difference | false depth | "
+        "false raw | in reach depth | in reach raw | raw valid pixels | mostly invalid | ToF "
+        "median ms |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  int within = 0, scored = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < depth.size() && i < raw.size(); ++i) {
+    const tools::Tally& d = depth[i].method[0].all;
+    const tools::Tally& r = raw[i].method[0].all;
+    std::string diff = "-";
+    if (d.target_frames > 0) {
+      const double points = r.rate(r.correct, r.target_frames) - d.rate(d.correct, d.target_frames);
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%+.1f", points);
+      diff = buf;
+      ++scored;
+      if (points >= -1.0) ++within;
+      worst = std::min(worst, points);
+    }
+    char share[32], ms[32];
+    std::snprintf(share, sizeof share, "%.1f %%", 100.0 * valid_share(raw[i].tof));
+    std::snprintf(ms, sizeof ms, "%.2f", 1e-3 * static_cast<double>(raw[i].tof_median_us));
+    md << "| " << depth[i].name << " | " << d.target_frames << " | "
+       << pct(d.correct, d.target_frames) << " | " << pct(r.correct, r.target_frames) << " | "
+       << diff << " | " << pct(d.false_found, d.frames) << " | " << pct(r.false_found, r.frames)
+       << " | " << pct(d.reach_correct, d.reach_target_frames) << " | "
+       << pct(r.reach_correct, r.reach_target_frames) << " | " << share << " | "
+       << raw[i].tof.frames_mostly_invalid << " of " << raw[i].tof.frames_in << " | " << ms
+       << " |\n";
+  }
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "\n%d of %d scenarios with a target within 1 point of the depth path (worst "
+                "%+.1f points).\n",
+                within, scored, worst);
+  md << line;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string scenario_dir = HRP_SCENARIO_DIR, out_dir = "hreval-out";
   long max_frames = -1;
   bool true_length = false;
+  std::vector<std::string> paths = {"depth"};
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -154,6 +220,13 @@ int main(int argc, char** argv) {
       max_frames = std::atol(next("--max-frames").c_str());
     } else if (a == "--true-length") {
       true_length = true;
+    } else if (a == "--camera") {
+      const std::string v = next("--camera");
+      if (v != "depth" && v != "raw" && v != "both") {
+        std::fprintf(stderr, "hreval: --camera is depth, raw or both, not '%s'\n", v.c_str());
+        return 2;
+      }
+      paths = v == "both" ? std::vector<std::string>{"depth", "raw"} : std::vector<std::string>{v};
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "hreval: unknown option '%s' (see --help)\n", a.c_str());
       return 2;
@@ -178,8 +251,8 @@ int main(int argc, char** argv) {
   // scenario, each method.
   std::map<std::pair<std::string, std::string>, tools::Tally> by_surface_length[2];
   int failures = 0;
-  std::vector<hal::DepthPoint> points;
   std::vector<estimator::CloudPoint> buffer;
+  std::vector<ScenarioResult> raw_results;  // --camera both: the raw path's
   for (const std::string& file : files) {
     sim_hal::Scenario sc;
     std::string error;
@@ -209,33 +282,45 @@ int main(int argc, char** argv) {
     // Told the length, the detector looks for that one, not every ISS type.
     if (true_length) cfg.handrail_type_count = 0;
     cfg.gripper_angle_rad = static_cast<float>(sc.gripper_angle_deg * M_PI / 180.0);
-    estimator::HandrailDetector proposed(cfg), basic(cfg);
-    sim_hal::DepthRenderer renderer(cam, sc.sensor);
     std::size_t n = sc.T_world_cam.size();
     if (max_frames >= 0) n = std::min(n, static_cast<std::size_t>(max_frames));
-    tools::Progress progress("hreval " + sc.name, n);
-    for (std::size_t f = 0; f < n; ++f) {
-      renderer.render(sc.scene, sc.T_world_cam[f], sc.seed, f, &points);
-      const sim_hal::FrameTruth truth = sim_hal::compute_truth(sc.scene, cam, sc.T_world_cam[f], f);
-      const int target = tools::target_handrail(truth, cfg.gripper_angle_rad);
-      const int reach_target = tools::target_handrail_in_reach(truth, cfg.gripper_angle_rad);
-      const hal::DepthFrame frame{f, static_cast<std::int64_t>(f) * 200000, cam.width, cam.height,
-                                  points.data()};
-      const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
-      const estimator::HandrailDetection d[2] = {
-          proposed.detect(cloud, estimator::Method::kProposed),
-          basic.detect(cloud, estimator::Method::kBasic)};
-      const std::pair<std::string, std::string> group(r.surface, length_label(truth, target));
-      for (int m = 0; m < 2; ++m) {
-        r.method[m].by_label[sc.pose_labels[f]].add(d[m], truth, target, reach_target);
-        r.method[m].all.add(d[m], truth, target, reach_target);
-        by_surface_length[m][group].add(d[m], truth, target, reach_target);
+    const ScenarioResult blank = r;
+    // The depth path first (the report's tables), then the raw path.
+    for (const std::string& path : paths) {
+      ScenarioResult& out = path == paths.front() ? r : raw_results.emplace_back(blank);
+      estimator::HandrailDetector proposed(cfg), basic(cfg);
+      tools::SimCameraPath camera(sc);
+      if (!camera.open(path, out_dir + "/tof-calibration.json", kUseCase, &error)) {
+        std::fprintf(stderr, "hreval: %s: %s\n", sc.name.c_str(), error.c_str());
+        return 1;
       }
-      progress.update(f + 1);
+      tools::Progress progress("hreval " + sc.name + (paths.size() > 1 ? " " + path : ""), n);
+      hal::DepthFrame frame;
+      for (std::size_t f = 0; f < n && camera.next(&frame); ++f) {
+        const sim_hal::FrameTruth truth =
+            sim_hal::compute_truth(sc.scene, cam, sc.T_world_cam[f], f);
+        const int target = tools::target_handrail(truth, cfg.gripper_angle_rad);
+        const int reach_target = tools::target_handrail_in_reach(truth, cfg.gripper_angle_rad);
+        const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
+        const estimator::HandrailDetection d[2] = {
+            proposed.detect(cloud, estimator::Method::kProposed),
+            basic.detect(cloud, estimator::Method::kBasic)};
+        const std::pair<std::string, std::string> group(out.surface, length_label(truth, target));
+        for (int m = 0; m < 2; ++m) {
+          out.method[m].by_label[sc.pose_labels[f]].add(d[m], truth, target, reach_target);
+          out.method[m].all.add(d[m], truth, target, reach_target);
+          if (&out == &r) by_surface_length[m][group].add(d[m], truth, target, reach_target);
+        }
+        progress.update(f + 1);
+      }
+      if (const pico_flexx::RawDepthPipeline* p = camera.pipeline()) {
+        out.tof = p->counts();
+        out.tof_median_us = p->processing_median_us();
+      }
+      const tools::Tally& p = out.method[0].all;
+      progress.finish("detected " + pct(p.correct, p.target_frames) + ", false " +
+                      pct(p.false_found, p.frames));
     }
-    const tools::Tally& p = r.method[0].all;
-    progress.finish("detected " + pct(p.correct, p.target_frames) + ", false " +
-                    pct(p.false_found, p.frames));
     results.push_back(std::move(r));
   }
 
@@ -343,6 +428,7 @@ int main(int argc, char** argv) {
       md << " |\n";
     }
   }
+  if (!raw_results.empty()) raw_beside_depth(md, results, raw_results);
   md << "\n## Failures and the detector's reasons\n\n"
      << "Per scenario and method: the frames with a target where the target was not found, the "
         "frames with a false detection, and what the detector reported over all frames (FOUND: "

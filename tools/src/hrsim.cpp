@@ -1,6 +1,8 @@
 // hrsim: renders a scenario into a folder of organized PCD frames with
 // ground truth (truth.jsonl), and optionally a false-colour picture of each
-// frame with the true centre lines drawn on it.
+// frame with the true centre lines drawn on it. With --camera raw the
+// frames are the raw renderer's phase images (written too, DIR/raw/) through
+// the robot's ToF processing.
 #include <sys/stat.h>
 
 #include <chrono>
@@ -12,6 +14,8 @@
 #include "common/depth_picture.hpp"
 #include "common/progress.hpp"
 #include "formats/pcd_io.hpp"
+#include "raw_frame_file.hpp"
+#include "sim_camera_path.hpp"
 #include "sim_hal/ground_truth.hpp"
 #include "sim_hal/scenario.hpp"
 
@@ -30,6 +34,12 @@ void usage(FILE* out) {
                "                    PCD data encoding (default binary; binary_compressed is\n"
                "                    PCL's LZF-compressed form)\n"
                "  --ascii           same as --pcd-format ascii\n"
+               "  --camera depth|raw\n"
+               "                    depth: the depth renderer (default). raw: the raw\n"
+               "                    renderer's phase frames (MODE_9), written as\n"
+               "                    DIR/raw/frame_NNNNN.raw (format: tools/README.md), through\n"
+               "                    the robot's ToF processing into the PCD frames, on the\n"
+               "                    unit's calibration file DIR/tof-calibration.json\n"
                "  --max-frames N    render only the first N frames\n"
                "  --seed N          override the scenario's seed\n"
                "  -h, --help        this text\n");
@@ -47,6 +57,7 @@ int main(int argc, char** argv) {
   formats::PcdEncoding encoding = formats::PcdEncoding::kBinary;
   long max_frames = -1;
   long long seed = -1;
+  std::string camera_path = "depth";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&](const char* what) -> const char* {
@@ -79,6 +90,12 @@ int main(int argc, char** argv) {
                      v.c_str());
         return 2;
       }
+    } else if (a == "--camera") {
+      camera_path = next("--camera");
+      if (camera_path != "depth" && camera_path != "raw") {
+        std::fprintf(stderr, "hrsim: --camera is depth or raw, not '%s'\n", camera_path.c_str());
+        return 2;
+      }
     } else if (a == "--max-frames") {
       max_frames = std::atol(next("--max-frames"));
     } else if (a == "--seed") {
@@ -106,7 +123,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (seed >= 0) scenario.seed = static_cast<std::uint64_t>(seed);
-  if (!make_dir(out_dir) || (png && !make_dir(out_dir + "/png"))) {
+  const bool raw = camera_path == "raw";
+  if (!make_dir(out_dir) || (png && !make_dir(out_dir + "/png")) ||
+      (raw && !make_dir(out_dir + "/raw"))) {
     std::fprintf(stderr, "hrsim: cannot create %s: %s\n", out_dir.c_str(), std::strerror(errno));
     return 1;
   }
@@ -116,23 +135,29 @@ int main(int argc, char** argv) {
     return 1;
   }
   const sim_hal::CameraIntrinsics cam = sim_hal::pico_flexx_intrinsics();
-  sim_hal::DepthRenderer renderer(cam, scenario.sensor);
+  tools::SimCameraPath camera(scenario);
+  if (!camera.open(camera_path, out_dir + "/tof-calibration.json", "MODE_9_5FPS_2000", &error)) {
+    std::fprintf(stderr, "hrsim: %s\n", error.c_str());
+    return 1;
+  }
   std::size_t n = scenario.T_world_cam.size();
   if (max_frames >= 0 && static_cast<std::size_t>(max_frames) < n)
     n = static_cast<std::size_t>(max_frames);
-  std::vector<hal::DepthPoint> points;
   tools::Progress progress("hrsim " + scenario.name, n);
-  const std::int64_t period_us = static_cast<std::int64_t>(1e6 / scenario.frame_rate_hz);
   double render_ms = 0.0;
   for (std::size_t f = 0; f < n; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
-    renderer.render(scenario.scene, scenario.T_world_cam[f], scenario.seed, f, &points);
+    hal::DepthFrame frame;
+    if (!camera.next(&frame)) break;
     render_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    const hal::DepthFrame frame{f, static_cast<std::int64_t>(f) * period_us, cam.width, cam.height,
-                                points.data()};
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05zu", f);
+    if (raw && !tools::write_raw_frame(out_dir + "/raw/" + name + ".raw", *camera.last_raw_frame(),
+                                       &error)) {
+      std::fprintf(stderr, "\nhrsim: %s\n", error.c_str());
+      return 1;
+    }
     if (!formats::write_pcd(out_dir + "/" + name + ".pcd", frame, encoding, &error)) {
       std::fprintf(stderr, "\nhrsim: %s\n", error.c_str());
       return 1;
@@ -162,9 +187,20 @@ int main(int argc, char** argv) {
     }
     progress.update(f + 1);
   }
-  char note[96];
-  std::snprintf(note, sizeof note, "mean render %.2f ms/frame",
-                n ? render_ms / static_cast<double>(n) : 0.0);
+  char note[160];
+  if (const pico_flexx::RawDepthPipeline* p = camera.pipeline()) {
+    const pico_flexx::PipelineCounts c = p->counts();
+    std::snprintf(note, sizeof note,
+                  "raw path: mean render and processing %.2f ms/frame, ToF processing median "
+                  "%.2f ms, %llu dropped, %llu mostly invalid",
+                  n ? render_ms / static_cast<double>(n) : 0.0,
+                  1e-3 * static_cast<double>(p->processing_median_us()),
+                  static_cast<unsigned long long>(c.frames_dropped),
+                  static_cast<unsigned long long>(c.frames_mostly_invalid));
+  } else {
+    std::snprintf(note, sizeof note, "mean render %.2f ms/frame",
+                  n ? render_ms / static_cast<double>(n) : 0.0);
+  }
   progress.finish(note);
   std::printf("hrsim: wrote %zu frames of '%s' to %s (%s)\n", n, scenario.name.c_str(),
               out_dir.c_str(), note);

@@ -3,15 +3,28 @@
 // scenario's frames and hands them to the registered listener, either paced
 // at the use case's frame rate (real time) or as fast as possible, or one
 // at a time with capture_next() for lock-step simulation and tests.
+//
+// Two paths to the listener: the depth renderer (tof_sensor.hpp, depth
+// with modelled sensor effects; the default until a pipeline is set) or,
+// once set_raw_pipeline() is called, the raw path: the raw renderer
+// (tof_raw_renderer.hpp) makes the unit's phase images and the robot's own
+// ToF processing (pico_flexx/raw_depth_pipeline.hpp) turns them into the
+// depth frames the listener gets. The unit's calibration is the camera's
+// truth; write_unit_calibration() puts it in the file the robot's side
+// reads at start-up.
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "hal/clock.hpp"
 #include "hal/depth_camera.hpp"
+#include "pico_flexx/raw_depth_pipeline.hpp"
 #include "sim_hal/scenario.hpp"
+#include "sim_hal/tof_raw_renderer.hpp"
 #include "sim_hal/tof_sensor.hpp"
 
 namespace sim_hal {
@@ -66,8 +79,34 @@ class SimulatedCamera final : public hal::DepthCamera {
   void set_pose_source(CameraPoseSource* source) { pose_source_ = source; }
   void set_tamper(FrameTamper* tamper) { tamper_ = tamper; }
 
+  // The simulated unit's calibration (simulated_calibration with
+  // kUnitSeed) and writing it as the unit's calibration file.
+  static constexpr std::uint64_t kUnitSeed = 7;
+  const tof::Calibration& unit_calibration() const { return unit_calibration_; }
+  bool write_unit_calibration(const std::string& path, std::string* error) const;
+  // The raw path through `pipeline` (not owned; built by the robot's side
+  // from the calibration file). Set before start_capture; nullptr goes back
+  // to the depth renderer. DEVICE_IS_BUSY while capturing.
+  [[nodiscard]] hal::CameraStatus set_raw_pipeline(pico_flexx::RawDepthPipeline* pipeline);
+  bool raw_path() const { return pipeline_ != nullptr; }
+  // The raw path's last raw frame (nullptr on the depth path), for tools
+  // that record it; valid until the next frame is rendered.
+  const tof::RawFrame* last_raw_frame() const { return pipeline_ ? raw_frame_.get() : nullptr; }
+
  private:
+  // The pipeline's listener: applies the tamper to the processed frame,
+  // then hands it to the registered listener.
+  class ProcessedFrames final : public hal::DepthDataListener {
+   public:
+    explicit ProcessedFrames(SimulatedCamera& camera) : camera_(camera) {}
+    void on_new_data(const hal::DepthFrame& frame) override;
+
+   private:
+    SimulatedCamera& camera_;
+  };
+
   hal::CameraStatus render_and_deliver(std::size_t index);
+  void deliver(hal::DepthFrame frame, std::int64_t now_us);
   void capture_loop();
 
   const Scenario& scenario_;
@@ -86,6 +125,13 @@ class SimulatedCamera final : public hal::DepthCamera {
   std::mutex render_mutex_;
   CameraPoseSource* pose_source_ = nullptr;
   FrameTamper* tamper_ = nullptr;
+  // The raw path, built when a pipeline is set.
+  tof::Calibration unit_calibration_;
+  pico_flexx::RawDepthPipeline* pipeline_ = nullptr;
+  std::unique_ptr<RawRenderer> raw_renderer_;
+  std::unique_ptr<tof::RawFrame> raw_frame_;
+  ProcessedFrames processed_{*this};
+  std::int64_t frame_time_us_ = 0;  // the frame being processed's render time
 };
 
 }  // namespace sim_hal
