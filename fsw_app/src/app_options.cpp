@@ -118,7 +118,8 @@ void print_usage(std::FILE* out) {
                "  --fault NAME[@S]      sim: inject a fault S seconds (default 1) after the\n"
                "                        approach starts: servo-silent, gripper-overcurrent,\n"
                "                        occlude (1 s), corrupt-frames (5 frames), imu-silent\n"
-               "                        (0.5 s), gp-jump (the GP pose 20 cm off from then on)\n"
+               "                        (0.5 s), gp-jump (the GP pose 20 cm off from then on),\n"
+               "                        handrail-lost (the camera sees nothing from then on)\n"
                "  --camera raw|depth    sim: the frames' path (default raw): the raw renderer's\n"
                "                        phase frames through the robot's ToF processing, or\n"
                "                        the depth renderer's frames\n"
@@ -228,7 +229,8 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
         if (*end || t < 0) return usage_error("--fault " + v + ": the time after @ is seconds");
       }
       if (name != "servo-silent" && name != "gripper-overcurrent" && name != "occlude" &&
-          name != "corrupt-frames" && name != "imu-silent" && name != "gp-jump") {
+          name != "corrupt-frames" && name != "imu-silent" && name != "gp-jump" &&
+          name != "handrail-lost") {
         return usage_error("unknown fault \"" + name + "\"");
       }
       o->faults.push_back({name, t});

@@ -1,5 +1,6 @@
 #include "fsw_app/localization_task.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fsw_app/msg_convert.hpp"
@@ -52,7 +53,14 @@ LocalizationTaskCounters LocalizationTask::counters() const {
   c.imu_queue_overflows = imu_queue_.overflows();
   c.handrail_unusable = handrail_unusable_.load();
   c.poses_published = poses_published_.load();
+  c.gp_fallback_accepted = gp_fallback_accepted_.load();
+  c.position_sigma_m = position_sigma_m_.load();
+  c.position_sigma_holding_m = position_sigma_holding_m_.load();
   return c;
+}
+
+loc::UpdateStatus LocalizationTask::set_handrail_survey(const loc::HandrailMap& survey) {
+  return filter_->set_handrail_survey(survey);
 }
 
 void LocalizationTask::step() {
@@ -88,7 +96,11 @@ void LocalizationTask::step() {
     g.q_world_body = Eigen::Quaterniond(T.linear());
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 6; ++c) g.cov(r, c) = gp_.covariance[r][c];
-    (void)filter_->add_gp_pose(g);  // counted by the filter, by status
+    // Counted by the filter, by status; here only the fall-back on it.
+    const bool fallback = handrail_has_held_ && !filter_->handrail_holding();
+    if (filter_->add_gp_pose(g) == loc::UpdateStatus::kAccepted && fallback) {
+      gp_fallback_accepted_.fetch_add(1);
+    }
   }
   const std::uint64_t seq = handrail_box_.read(&handrail_);
   if (seq != handrail_seen_) {
@@ -100,6 +112,13 @@ void LocalizationTask::step() {
     fill_pose();
     pose_pub_.publish(pose_);
     poses_published_.fetch_add(1);
+    const double sigma_m = std::sqrt(std::max(
+        {pose_.pose_covariance[0][0], pose_.pose_covariance[1][1], pose_.pose_covariance[2][2]}));
+    position_sigma_m_.store(sigma_m);
+    if (pose_.handrail_holding) {
+      handrail_has_held_ = true;
+      position_sigma_holding_m_.store(sigma_m);
+    }
   }
 }
 
@@ -203,6 +222,8 @@ LocalizerReport localizer_report(const LocalizationTask& task) {
   r.map_resets = c.map_resets;
   r.initialized = f.initialized();
   r.map_valid = f.handrail_map().valid;
+  r.map_surveyed = f.handrail_map().surveyed;
+  r.handrail_holding = f.handrail_holding();
   return r;
 }
 

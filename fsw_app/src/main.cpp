@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -445,6 +446,8 @@ int main(int argc, char** argv) {
         world->gripper().set_winding_short(true);
       } else if (f == "occlude") {
         world->occlude_until(clock.now_us() + 1000000);
+      } else if (f == "handrail-lost") {
+        world->occlude_until(std::numeric_limits<std::int64_t>::max());
       } else if (f == "corrupt-frames") {
         world->corrupt_next_frames(5);
       } else if (f == "imu-silent") {

@@ -50,6 +50,13 @@ struct LocalizationTaskCounters {
   std::uint64_t imu_queue_overflows = 0;
   std::uint64_t handrail_unusable = 0;  // NH, deadline, nothing in view
   std::uint64_t poses_published = 0;
+  // GP poses the filter accepted after the handrail had held the pose and
+  // stopped holding it: the fall-back on the GP when the handrail is lost.
+  std::uint64_t gp_fallback_accepted = 0;
+  // The filter's position sigma (largest axis) in the newest pose published,
+  // and in the newest published while the handrail held the pose (-1: never).
+  double position_sigma_m = -1.0;
+  double position_sigma_holding_m = -1.0;
 };
 
 // What the run summary reports of the task: the filter's verdicts on its
@@ -62,7 +69,7 @@ struct LocalizerReport {
   std::uint32_t handrail_accepted = 0, handrail_no_end_accepted = 0, handrail_rejected_gate = 0,
                 handrail_rejected_other = 0, handrail_map_sightings = 0;
   std::uint32_t features_gated = 0, map_resets = 0;
-  bool initialized = false, map_valid = false;
+  bool initialized = false, map_valid = false, map_surveyed = false, handrail_holding = false;
 };
 
 class LocalizationTask {
@@ -74,6 +81,11 @@ class LocalizationTask {
   // One cycle: inputs into the filter, ROBOT_POSE out.
   void step();
   void publish_health();
+
+  // The handrail's surveyed world pose as the filter's map (before start()):
+  // the filter's verdict on it (handrail_map.hpp's check_survey()).
+  estimator::localization::UpdateStatus set_handrail_survey(
+      const estimator::localization::HandrailMap& survey);
 
   const estimator::localization::LocalizationFilter& filter() const { return *filter_; }
   LocalizationTaskCounters counters() const;
@@ -104,7 +116,9 @@ class LocalizationTask {
   Eigen::Vector3d last_omega_body_ = Eigen::Vector3d::Zero();
   std::int64_t last_health_us_ = 0;
   std::atomic<std::uint64_t> imu_in_{0}, gp_in_{0}, gp_held_off_{0}, handrail_in_{0},
-      imu_seq_gaps_{0}, handrail_unusable_{0}, poses_published_{0};
+      imu_seq_gaps_{0}, handrail_unusable_{0}, poses_published_{0}, gp_fallback_accepted_{0};
+  std::atomic<double> position_sigma_m_{-1.0}, position_sigma_holding_m_{-1.0};
+  bool handrail_has_held_ = false;
   PeriodicThread thread_;  // last: stopped before the members it uses go
 };
 
