@@ -1,0 +1,78 @@
+#pragma once
+// Raw frames back from the stream endpoint's transfers. The camera sends
+// each frame as its 64-byte header and payload back to back and ends it
+// with a short (or zero-length) transfer, so a frame always starts a
+// transfer. The assembler copies payload bytes straight into a
+// tof::RawFrame (the wire's layout is the frame's: planar 16-bit
+// little-endian samples) and hands a frame on only when its header,
+// size, checksum and sequence number are right; anything else is dropped
+// and counted by reason. Pure: no I/O, no clock, no allocation.
+#include <cstddef>
+#include <cstdint>
+
+#include "pico_flexx/usb_protocol.hpp"
+#include "tof/raw_frame.hpp"
+
+namespace pico_flexx {
+
+struct AssemblerCounts {
+  std::uint64_t transfers = 0;
+  std::uint64_t zero_length_transfers = 0;
+  std::uint64_t frames_complete = 0;      // handed on
+  std::uint64_t frames_short = 0;         // ended before their size
+  std::uint64_t frames_corrupt = 0;       // payload checksum wrong
+  std::uint64_t frames_bad_header = 0;    // a transfer that should start a frame and does not
+  std::uint64_t frames_overrun = 0;       // more bytes than the header said, no frame end
+  std::uint64_t frames_out_of_order = 0;  // sequence not after the last one handed on
+  std::uint64_t frames_missed = 0;        // sequence gaps: frames the camera never sent
+  std::uint64_t bytes_discarded = 0;      // bytes of dropped frames and bad transfers
+  ParseStatus last_header_error = ParseStatus::kOk;
+  std::uint64_t dropped() const {
+    return frames_short + frames_corrupt + frames_bad_header + frames_overrun + frames_out_of_order;
+  }
+};
+
+enum class AssemblyEvent : std::uint8_t {
+  kNone,        // bytes taken, no frame finished
+  kFrameReady,  // target() holds a complete, checked frame
+  kDropped,     // a frame (or a stray transfer) was dropped; counts say why
+};
+const char* to_string(AssemblyEvent event);
+
+class FrameAssembler {
+ public:
+  // Frames are written into `target` (not owned; it must outlive this).
+  explicit FrameAssembler(tof::RawFrame* target) : target_(target) {}
+
+  // One completed transfer: `length` bytes received into a transfer of
+  // `capacity` bytes (length < capacity marks the end of a frame).
+  AssemblyEvent on_transfer(const std::uint8_t* data, std::size_t length, std::size_t capacity);
+
+  // Forgets the frame in progress and the last sequence number (after the
+  // stream restarts: a reconnect, a reset).
+  void restart();
+  // Forgets only the frame in progress (its transfers were cancelled); the
+  // sequence check goes on.
+  void abandon_frame() { in_frame_ = false; }
+
+  const AssemblerCounts& counts() const { return counts_; }
+  const FrameHeader& last_header() const { return header_; }
+  tof::RawFrame* target() { return target_; }
+
+ private:
+  AssemblyEvent start_frame(const std::uint8_t* data, std::size_t length, std::size_t capacity);
+  AssemblyEvent continue_frame(const std::uint8_t* data, std::size_t length, std::size_t capacity);
+  AssemblyEvent finish_frame();
+  AssemblyEvent drop(std::uint64_t* counter, std::size_t bytes);
+  std::uint8_t* payload_bytes() { return reinterpret_cast<std::uint8_t*>(target_->image(0)); }
+
+  tof::RawFrame* target_;
+  AssemblerCounts counts_;
+  FrameHeader header_;
+  bool in_frame_ = false;
+  std::size_t received_bytes_ = 0;  // payload bytes of the frame in progress
+  bool have_sequence_ = false;
+  std::uint32_t last_sequence_ = 0;
+};
+
+}  // namespace pico_flexx
