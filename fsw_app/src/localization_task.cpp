@@ -55,7 +55,9 @@ LocalizationTaskCounters LocalizationTask::counters() const {
   c.poses_published = poses_published_.load();
   c.gp_fallback_accepted = gp_fallback_accepted_.load();
   c.position_sigma_m = position_sigma_m_.load();
-  c.position_sigma_holding_m = position_sigma_holding_m_.load();
+  c.position_sigma_held_min_m = position_sigma_held_min_m_.load();
+  c.across_bar_sigma_m = across_bar_sigma_m_.load();
+  c.across_bar_sigma_held_min_m = across_bar_sigma_held_min_m_.load();
   return c;
 }
 
@@ -112,12 +114,33 @@ void LocalizationTask::step() {
     fill_pose();
     pose_pub_.publish(pose_);
     poses_published_.fetch_add(1);
-    const double sigma_m = std::sqrt(std::max(
-        {pose_.pose_covariance[0][0], pose_.pose_covariance[1][1], pose_.pose_covariance[2][2]}));
-    position_sigma_m_.store(sigma_m);
-    if (pose_.handrail_holding) {
-      handrail_has_held_ = true;
-      position_sigma_holding_m_.store(sigma_m);
+    note_sigmas();
+  }
+}
+
+void LocalizationTask::note_sigmas() {
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) P(r, c) = pose_.pose_covariance[r][c];
+  const double sigma_m = std::sqrt(P.diagonal().maxCoeff());
+  double across_m = -1.0;
+  const loc::HandrailMap& map = filter_->handrail_map();
+  if (map.valid) {
+    const Eigen::Vector3d n = map.T_world_handrail.linear().col(0);
+    const Eigen::Vector3d side = map.T_world_handrail.linear().col(1);
+    across_m = std::sqrt(std::max(n.dot(P * n), side.dot(P * side)));
+  }
+  position_sigma_m_.store(sigma_m);
+  across_bar_sigma_m_.store(across_m);
+  if (pose_.handrail_holding) {
+    // The smallest while the handrail held: just after an update (the
+    // newest could be up to handrail_hold_s of propagation later).
+    handrail_has_held_ = true;
+    const double held_m = position_sigma_held_min_m_.load();
+    if (held_m < 0.0 || sigma_m < held_m) position_sigma_held_min_m_.store(sigma_m);
+    const double across_held_m = across_bar_sigma_held_min_m_.load();
+    if (across_m >= 0.0 && (across_held_m < 0.0 || across_m < across_held_m)) {
+      across_bar_sigma_held_min_m_.store(across_m);
     }
   }
 }

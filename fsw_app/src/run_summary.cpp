@@ -277,7 +277,8 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
                  "\"handrail_unusable\": %llu, \"features_gated\": %u, \"map_resets\": %u, "
                  "\"poses_published\": %llu, \"map_surveyed\": %s, \"handrail_holding\": %s, "
                  "\"gp_fallback_accepted\": %llu, \"position_sigma_m\": %.5f, "
-                 "\"position_sigma_holding_m\": %.5f}",
+                 "\"position_sigma_held_min_m\": %.5f, \"across_bar_sigma_m\": %.5f, "
+                 "\"across_bar_sigma_held_min_m\": %.5f}",
                  r.initialized ? "true" : "false", r.map_valid ? "true" : "false", r.imu_propagated,
                  r.imu_gaps_bridged, r.imu_gaps_lost, r.imu_rejected,
                  static_cast<unsigned long long>(r.task.imu_seq_gaps), r.gp_accepted,
@@ -288,7 +289,8 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
                  r.map_resets, static_cast<unsigned long long>(r.task.poses_published),
                  r.map_surveyed ? "true" : "false", r.handrail_holding ? "true" : "false",
                  static_cast<unsigned long long>(r.task.gp_fallback_accepted),
-                 r.task.position_sigma_m, r.task.position_sigma_holding_m);
+                 r.task.position_sigma_m, r.task.position_sigma_held_min_m,
+                 r.task.across_bar_sigma_m, r.task.across_bar_sigma_held_min_m);
   } else {
     std::fprintf(f, "\"filter\": null");
   }

@@ -216,7 +216,39 @@ void test_handrail_lost_falls_back_on_the_gp(void**) {
   assert_true(r.position_sigma_m() > 1.5 * sigma_with);
   assert_true(count(r, loc::MeasurementKind::kGpPose, loc::UpdateStatus::kAccepted) >
               gp_before + 10);
+  // Every one of those is the fall-back, counted by the task, and the sigma
+  // while the handrail held is the one the run summary reports.
+  const fsw_app::LocalizationTaskCounters c = r.task.counters();
+  assert_true(c.gp_fallback_accepted + gp_before >=
+              count(r, loc::MeasurementKind::kGpPose, loc::UpdateStatus::kAccepted));
+  assert_true(c.position_sigma_held_min_m > 0.0 && c.position_sigma_held_min_m < 1.5 * sigma_with);
+  assert_true(c.position_sigma_m > 1.5 * c.position_sigma_held_min_m);
+  assert_true(c.across_bar_sigma_held_min_m > 0.0 &&
+              c.across_bar_sigma_m > 1.5 * c.across_bar_sigma_held_min_m);
   assert_true(r.error_m() < 0.09);
+}
+
+// Given the handrail's surveyed world pose (here its true one, 2 mm and
+// 0.1 deg of survey sigma), the handrail places the robot in the world: the
+// world error drops from the GP's 5 cm to what the detections give.
+void test_surveyed_handrail_gives_the_world_pose(void**) {
+  Rig r(4);
+  loc::HandrailMap survey;
+  survey.T_world_handrail = world_handrail();
+  survey.position_sigma_m = 0.002;
+  survey.attitude_sigma_rad = 0.1 * 3.14159265358979 / 180.0;
+  assert_int_equal(static_cast<int>(r.task.set_handrail_survey(survey)),
+                   static_cast<int>(loc::UpdateStatus::kAccepted));
+  double worst = 0.0;
+  r.run(10.0);
+  for (int k = 0; k < 40; ++k) {
+    r.run(0.5);
+    worst = std::max(worst, r.error_m());
+  }
+  std::printf("surveyed handrail: world error now %.1f mm, worst %.1f mm over 20 s\n",
+              1e3 * r.error_m(), 1e3 * worst);
+  assert_true(r.task.filter().handrail_map().surveyed);
+  assert_true(worst < 0.01);
 }
 
 // No IMU sample for 0.5 s: a gap bridged by the filter's rule (not lost),
@@ -383,6 +415,7 @@ int main() {
       cmocka_unit_test(test_follows_the_gp_without_the_handrail),
       cmocka_unit_test(test_handrail_pins_the_pose_relative_to_the_bar),
       cmocka_unit_test(test_handrail_lost_falls_back_on_the_gp),
+      cmocka_unit_test(test_surveyed_handrail_gives_the_world_pose),
       cmocka_unit_test(test_imu_silent_half_a_second_is_bridged),
       cmocka_unit_test(test_handrail_5cm_off_is_gated),
       cmocka_unit_test(test_gp_jump_rejected_while_the_handrail_holds_taken_without),

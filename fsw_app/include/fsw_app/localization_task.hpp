@@ -54,9 +54,15 @@ struct LocalizationTaskCounters {
   // stopped holding it: the fall-back on the GP when the handrail is lost.
   std::uint64_t gp_fallback_accepted = 0;
   // The filter's position sigma (largest axis) in the newest pose published,
-  // and in the newest published while the handrail held the pose (-1: never).
+  // and the smallest published while the handrail held the pose (-1: never).
   double position_sigma_m = -1.0;
-  double position_sigma_holding_m = -1.0;
+  double position_sigma_held_min_m = -1.0;
+  // The same across the bar (the larger of the handrail map's wall-normal
+  // and sideways axes): the directions the handrail measures, whose sigma
+  // grows once it is lost, while along the bar the GP's fixes may shrink it
+  // (-1: no map).
+  double across_bar_sigma_m = -1.0;
+  double across_bar_sigma_held_min_m = -1.0;
 };
 
 // What the run summary reports of the task: the filter's verdicts on its
@@ -94,6 +100,7 @@ class LocalizationTask {
  private:
   void take_handrail(const hrp::handrail_estimate_t& e);
   void fill_pose();
+  void note_sigmas();
 
   LcmHub& hub_;
   LocalizationTaskConfig cfg_;
@@ -117,7 +124,8 @@ class LocalizationTask {
   std::int64_t last_health_us_ = 0;
   std::atomic<std::uint64_t> imu_in_{0}, gp_in_{0}, gp_held_off_{0}, handrail_in_{0},
       imu_seq_gaps_{0}, handrail_unusable_{0}, poses_published_{0}, gp_fallback_accepted_{0};
-  std::atomic<double> position_sigma_m_{-1.0}, position_sigma_holding_m_{-1.0};
+  std::atomic<double> position_sigma_m_{-1.0}, position_sigma_held_min_m_{-1.0},
+      across_bar_sigma_m_{-1.0}, across_bar_sigma_held_min_m_{-1.0};
   bool handrail_has_held_ = false;
   PeriodicThread thread_;  // last: stopped before the members it uses go
 };
