@@ -40,7 +40,8 @@ RawRenderer::RawRenderer(const CameraIntrinsics& cam, const ToFSettings& depth_s
   for (std::vector<float>* v :
        {&amplitude_, &background_, &ambient_, &own_re_, &own_im_, &sum_re_, &sum_im_,
         &sum_background_, &multipath_amplitude_, &multipath_path_m_, &step_mean_[0], &step_mean_[1],
-        &step_mean_[2], &step_mean_[3]}) {
+        &step_mean_[2], &step_mean_[3], &edge_share_[0], &edge_share_[1], &edge_share_[2],
+        &edge_share_[3]}) {
     v->resize(n);
   }
   normals_.resize(4 * n);
@@ -81,9 +82,58 @@ void RawRenderer::gather_returns(const Scene& scene, double exposure_us) {
   }
 }
 
+// Where the edges between neighbouring pixels lie. A pixel's light comes
+// from its own area (the lens blurs far less than a pixel: its diffraction
+// spot is a fifth of the pitch), so on one surface its centre ray stands
+// for it. Between two pixels that see different surfaces (or one surface
+// folding out of sight) the edge lies at a distance t, uniform in 0..1
+// pixel, from the first pixel's centre: the part of the first pixel past
+// it, max(0, 0.5 - t), sees the second's surface, and the part of the
+// second short of it, max(0, t - 0.5), sees the first's. Half the edge
+// pixels are so pure, the other half mixed by up to half (those the
+// processing's unwrapping and flying-pixel tests are there to catch).
+void RawRenderer::find_edges(std::uint64_t stream_seed) {
+  const CameraIntrinsics& cam = caster_.camera();
+  const int w = static_cast<int>(cam.width), h = static_cast<int>(cam.height);
+  const std::vector<float>& range = caster_.true_range_m();
+  const std::vector<std::int32_t>& surface = caster_.hit_surface();
+  for (std::vector<float>& e : edge_share_) std::fill(e.begin(), e.end(), 0.0f);
+  if (!settings_.footprint_edges) return;
+  constexpr float kFoldM = 0.02f;
+  SimRandom rng(stream_seed);
+  // One surface has an edge only where it folds out of sight: a jump of
+  // 2 cm or more that stands out, three times, from the jumps on either
+  // side (a steep smooth surface has them all alike). `before` and `after`
+  // are the pixels beyond i and j on the same line (i, j themselves at the
+  // border).
+  auto folds = [&](int before, int i, int j, int after) {
+    const float jump = std::fabs(range[i] - range[j]);
+    if (jump < kFoldM) return false;
+    const float side =
+        std::min(std::fabs(range[before] - range[i]), std::fabs(range[j] - range[after]));
+    return jump > 3.0f * side;
+  };
+  auto pair = [&](int i, int j, int i_side, int j_side, int before, int after) {
+    if (surface[i] == surface[j] && !folds(before, i, j, after)) return;
+    const float t = static_cast<float>(rng.uniform());
+    edge_share_[i_side][i] = std::max(0.0f, 0.5f - t);
+    edge_share_[j_side][j] = std::max(0.0f, t - 0.5f);
+  };
+  enum { kUp, kDown, kLeft, kRight };
+  for (int row = 0; row < h; ++row) {
+    for (int col = 0; col < w; ++col) {
+      const int i = row * w + col;
+      if (col + 1 < w)
+        pair(i, i + 1, kRight, kLeft, col > 0 ? i - 1 : i, col + 2 < w ? i + 2 : i + 1);
+      if (row + 1 < h)
+        pair(i, i + w, kDown, kUp, row > 0 ? i - w : i, row + 2 < h ? i + 2 * w : i + w);
+    }
+  }
+}
+
 // The light arriving at each pixel for one frequency, as a phasor: its own
-// return and its footprint's share of the neighbours' (a neighbour off the
-// image counts as the pixel itself).
+// return, with the parts of its area that see a neighbour's surface
+// (find_edges) taking that neighbour's return instead.
 void RawRenderer::form_phasors(int frequency, double temperature_offset_m) {
   const CameraIntrinsics& cam = caster_.camera();
   const int w = static_cast<int>(cam.width), h = static_cast<int>(cam.height);
@@ -94,18 +144,29 @@ void RawRenderer::form_phasors(int frequency, double temperature_offset_m) {
     own_re_[i] = amplitude_[i] * std::cos(phase);
     own_im_[i] = amplitude_[i] * std::sin(phase);
   }
-  const float wn = static_cast<float>(settings_.footprint_neighbour_weight), w0 = 1.0f - 4.0f * wn;
   for (int row = 0; row < h; ++row) {
     for (int col = 0; col < w; ++col) {
       const int i = row * w + col;
       const int nb[4] = {row > 0 ? i - w : i, row < h - 1 ? i + w : i, col > 0 ? i - 1 : i,
                          col < w - 1 ? i + 1 : i};
-      float re = w0 * own_re_[i], im = w0 * own_im_[i], bg = w0 * background_[i];
-      for (int j : nb) {
-        re += wn * own_re_[j];
-        im += wn * own_im_[j];
-        bg += wn * background_[j];
+      // A feature narrower than a pixel can take in more than its area
+      // from both sides: the shares are then scaled to fill it.
+      float total = 0.0f;
+      for (int side = 0; side < 4; ++side) total += edge_share_[side][i];
+      const float scale = total > 1.0f ? 1.0f / total : 1.0f;
+      float own = 1.0f, re = 0.0f, im = 0.0f, bg = 0.0f;
+      for (int side = 0; side < 4; ++side) {
+        const float share = scale * edge_share_[side][i];
+        if (share <= 0.0f) continue;
+        const int j = nb[side];
+        own -= share;
+        re += share * own_re_[j];
+        im += share * own_im_[j];
+        bg += share * background_[j];
       }
+      re += own * own_re_[i];
+      im += own * own_im_[i];
+      bg += own * background_[i];
       sum_re_[i] = re;
       sum_im_[i] = im;
       sum_background_[i] = bg;
@@ -209,6 +270,7 @@ void RawRenderer::render(const Scene& scene, const Eigen::Isometry3d& T_world_ca
   const std::uint32_t exposure_us = choose_exposure_us(max_exposure_us);
   gather_returns(scene, exposure_us);
   if (settings_.multipath) find_multipath();
+  find_edges(mix_seed(seed, frame_index, 30));
   const double temperature_offset_m =
       calibration_.temperature_drift_m_per_k *
       (settings_.sensor_temperature_c - calibration_.reference_temperature_c);

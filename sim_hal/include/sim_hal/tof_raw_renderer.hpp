@@ -44,8 +44,12 @@ struct RawRenderSettings {
   // Ambient (cabin) light collected per microsecond by a surface of
   // reflectivity 1, in DN.
   double ambient_dn_per_us = 0.05;
-  // Each of a pixel's four neighbours' share of its footprint.
-  double footprint_neighbour_weight = 0.08;
+  // Mixed returns at depth edges: where a pixel and a neighbour see
+  // different surfaces (or one surface folding out of sight), the edge
+  // between them lies somewhere between the two pixels' centres (uniform,
+  // drawn per pair and frame); each pixel's footprint then takes in the
+  // part of the other surface that lies inside its own area.
+  bool footprint_edges = true;
   // Multipath: a surface 1 to 15 cm nearer, sampled on a ring of eight
   // pixels this far away, sends this share of its amplitude (each) along
   // the longer path camera -> it -> this pixel's surface -> camera.
@@ -86,6 +90,7 @@ class RawRenderer {
   void gather_returns(const Scene& scene, double exposure_us);
   void form_phasors(int frequency, double temperature_offset_m);
   void find_multipath();
+  void find_edges(std::uint64_t stream_seed);
   void write_samples(int frequency, tof::RawFrame* out, std::uint64_t stream_seed);
   void draw_normals(std::size_t count, std::uint64_t stream_seed);
   void write_grey(tof::RawFrame* out, std::uint64_t stream_seed);
@@ -100,6 +105,9 @@ class RawRenderer {
   // DN), its phasor, and the summed phasor and background of its footprint.
   std::vector<float> amplitude_, background_, ambient_;
   std::vector<float> own_re_, own_im_, sum_re_, sum_im_, sum_background_;
+  // Per frame: the share of each pixel's area that sees its upper, lower,
+  // left and right neighbour's surface (0 off an edge).
+  std::vector<float> edge_share_[4];
   // Per frame: the multipath return each pixel gets (amplitude in DN, 0 for
   // none, and its one-way equivalent path), found once for all frequencies.
   std::vector<float> multipath_amplitude_, multipath_path_m_;
