@@ -213,6 +213,42 @@ void test_handrail_occluded_for_a_second_is_ridden_out(void**) {
   assert_true(o.flag("perched"));
 }
 
+// The handrail lost for good 1 s into the approach (the camera sees nothing
+// from then on): the arm's rule ends the approach, HANDRAIL_LOST after
+// 1.5 s without an estimate, and the robot is held there (the perch manager
+// commands a hold on a fault): no perch, exit status 1. The filter is no
+// longer held by the handrail and goes on, initialised, with the GP. The
+// run ends at the fault, 1.5 s after the loss: too soon for the covariance
+// to grow much (its growth over 12 s without the handrail is asserted by
+// test_localization_task's test_handrail_lost_falls_back_on_the_gp); the
+// sigmas are printed.
+void test_handrail_lost_for_good_mid_approach(void**) {
+  const Outcome o =
+      run_expecting("approach-iss", {"--seed", "12", "--fault", "handrail-lost@1"},
+                    [](const Outcome& r) { return r.text("fault") == "HANDRAIL_LOST"; });
+  const double across_held = nested(o, {"localization", "filter", "across_bar_sigma_held_min_m"});
+  const double across_end = nested(o, {"localization", "filter", "across_bar_sigma_m"});
+  std::printf(
+      "  position sigma across the bar %.1f mm at best while the handrail held, %.1f mm at the "
+      "end (largest axis %.1f, %.1f mm); GP fixes taken after the loss %.0f\n",
+      1e3 * across_held, 1e3 * across_end,
+      1e3 * nested(o, {"localization", "filter", "position_sigma_held_min_m"}),
+      1e3 * nested(o, {"localization", "filter", "position_sigma_m"}),
+      nested(o, {"localization", "filter", "gp_fallback_accepted"}));
+  assert_string_equal(o.text("arm_state").c_str(), "FAULT");
+  assert_string_equal(o.text("fault").c_str(), "HANDRAIL_LOST");
+  assert_false(o.flag("perched"));
+  assert_int_equal(o.exit_status, 1);
+  const formats::JsonValue* localization = o.json.find("localization");
+  const formats::JsonValue* filter = localization ? localization->find("filter") : nullptr;
+  assert_non_null(filter);
+  const formats::JsonValue* holding = filter->find("handrail_holding");
+  assert_true(holding && holding->is_bool() && !holding->boolean);
+  const formats::JsonValue* initialized = filter->find("initialized");
+  assert_true(initialized && initialized->is_bool() && initialized->boolean);
+  assert_true(across_held > 0.0 && across_end > 0.0);
+}
+
 void test_burst_of_corrupt_frames_is_dropped_and_counted(void**) {
   const Outcome o = run_expecting("approach-iss", {"--seed", "6", "--fault", "corrupt-frames@1"},
                                   perched_within_1cm);
@@ -474,6 +510,7 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_servo_stops_answering_mid_approach),
       cmocka_unit_test(test_gripper_over_current),
       cmocka_unit_test(test_handrail_occluded_for_a_second_is_ridden_out),
+      cmocka_unit_test(test_handrail_lost_for_good_mid_approach),
       cmocka_unit_test(test_burst_of_corrupt_frames_is_dropped_and_counted),
       cmocka_unit_test(test_estimator_over_budget),
       cmocka_unit_test(test_tasks_split_across_two_processes_perch),
