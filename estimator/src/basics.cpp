@@ -66,6 +66,11 @@ const char* validate(const DetectorConfig& c) {
     return "max_width";
   if (c.budget_us < 0) return "budget_us";
   if (!(c.mount_search_m >= 0.0f && c.mount_search_m <= 0.3f)) return "mount_search_m";
+  // The histogram (kMountHistogramBins) spans at most 0.64 m.
+  if (!(c.mount_bay_max_m >= c.mount_bay_min_m && c.mount_bay_max_m <= 0.45f)) {
+    return "mount_bay_max_m";
+  }
+  if (!(c.mount_bay_min_m >= 0.0f)) return "mount_bay_min_m";
   if (!(c.mount_step_m >= 0.0f && c.mount_step_m <= 0.1f)) return "mount_step_m";
   if (!(c.mount_min_fraction > 0.0f && c.mount_min_fraction < 1.0f)) return "mount_min_fraction";
   if (c.max_mount_hypotheses == 0 || c.max_mount_hypotheses > kMaxMountHypotheses) {

@@ -37,7 +37,8 @@ float bar_front_m(const DetectorConfig& cfg) {
 void fill_histogram(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Workspace& ws,
                     Histogram* h) {
   h->lo_m = -(cfg.mount_search_m + kMountBinM * 2.0f);
-  const float hi_m = cfg.mount_search_m + cfg.mount_step_m + bar_front_m(cfg) + 0.02f;
+  const float hi_m = std::fmax(cfg.mount_search_m, cfg.mount_bay_max_m) + cfg.mount_step_m +
+                     bar_front_m(cfg) + 0.02f;
   const int bins = static_cast<int>(std::ceil((hi_m - h->lo_m) / kMountBinM));
   h->bins = bins < kMountHistogramBins ? bins : kMountHistogramBins;
   const float* s = ws.signed_distance_m.get();
@@ -57,8 +58,8 @@ void fill_histogram(const OrganizedCloud& cloud, const DetectorConfig& cfg, cons
 }
 
 // The surfaces: local maxima of the histogram smoothed over three bins,
-// within mount_search_m of the plane and with enough pixels; each at the
-// mean of its five bins.
+// within mount_search_m of the plane or where rack faces stand in front of
+// an empty bay, with enough pixels; each at the mean of its five bins.
 std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
                                  std::uint32_t valid_pixels, float peak_m[kMaxSurfacePeaks]) {
   const auto smoothed = [&h](int b) {
@@ -70,7 +71,11 @@ std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
   const float min_pixels = cfg.mount_min_fraction * static_cast<float>(valid_pixels);
   std::uint32_t peaks = 0;
   for (int b = 1; b + 1 < h.bins && peaks < kMaxSurfacePeaks; ++b) {
-    if (std::fabs(h.center_m(b)) > cfg.mount_search_m) continue;
+    // Near the plane, or where the rack faces stand in front of a bay.
+    const float at_m = h.center_m(b);
+    const bool near = std::fabs(at_m) <= cfg.mount_search_m;
+    const bool bay_front = at_m >= cfg.mount_bay_min_m && at_m <= cfg.mount_bay_max_m;
+    if (!near && !bay_front) continue;
     const std::uint32_t c = smoothed(b);
     if (static_cast<float>(c) < min_pixels || c < smoothed(b - 1) || c <= smoothed(b + 1)) {
       continue;

@@ -76,13 +76,42 @@ void test_surfaces_of_a_rack_wall(void**) {
 }
 
 void test_surfaces_too_far_from_the_plane_are_not_mounts(void**) {
-  // A box top 10 cm proud with something at a bar's height above it: rack
-  // faces differ by at most 5 cm, so it is no mount.
-  const DistanceFrame f({{0.0f, 0.6f}, {0.10f, 0.2f}, {0.10f + kFront, 0.05f}});
+  // Box tops 10 and 20 cm proud with something at a bar's height above
+  // them: rack faces differ by at most 5 cm and boxes are not mounts.
+  for (const float box : {0.10f, 0.20f}) {
+    const DistanceFrame f({{0.0f, 0.6f}, {box, 0.2f}, {box + kFront, 0.05f}});
+    const DetectorConfig cfg;
+    const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+    assert_false(has_surface(m, box));
+    assert_false(has_mount(m, box));
+  }
+}
+
+void test_rack_faces_in_front_of_an_empty_bay_are_mounts(void**) {
+  // The dominant plane is the back of an empty bay; the rack faces stand
+  // 35 and 33.5 cm in front of it, a seat track on the nearer one, and a
+  // bar on the track: the track is the mount, though far from the plane.
+  const float face = 0.35f, track = face + 0.013f;
+  const DistanceFrame f({{0.0f, 0.45f},
+                         {face, 0.2f},
+                         {face - 0.015f, 0.15f},
+                         {track, 0.03f},
+                         {track + kFront, 0.03f}});
   const DetectorConfig cfg;
   const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
-  assert_false(has_surface(m, 0.10f));
-  assert_false(has_mount(m, 0.10f));
+  assert_true(has_surface(m, face));
+  assert_true(has_surface(m, face - 0.015f));
+  assert_true(m.count >= 1);
+  assert_near(m.offset_m[0], track, 0.0015f);
+  // ... and a bar whose front stands there is seated on it.
+  float mount = 0.0f;
+  assert_true(find_mount_under_bar(m, cfg, track + kFront, 0.004f, &mount));
+  assert_near(mount, track, 0.0015f);
+  // Without the bay's range (a configuration that turns it off) the faces
+  // are not surfaces.
+  DetectorConfig no_bay;
+  no_bay.mount_bay_min_m = no_bay.mount_bay_max_m = 0.0f;
+  assert_false(has_surface(find_mount_hypotheses(f.cloud, no_bay, f.ws), face));
 }
 
 void test_no_bar_anywhere_leaves_the_plane(void**) {
@@ -223,6 +252,16 @@ void test_bad_mount_and_type_settings_are_named(void**) {
   cfg.mount_search_m = -0.01f;
   assert_string_equal(validate(cfg), "mount_search_m");
   cfg = DetectorConfig{};
+  cfg.mount_bay_max_m = 0.5f;  // beyond the histogram's span
+  assert_string_equal(validate(cfg), "mount_bay_max_m");
+  cfg = DetectorConfig{};
+  cfg.mount_bay_min_m = 0.3f;
+  cfg.mount_bay_max_m = 0.2f;
+  assert_string_equal(validate(cfg), "mount_bay_max_m");
+  cfg = DetectorConfig{};
+  cfg.mount_bay_min_m = cfg.mount_bay_max_m = -0.1f;
+  assert_string_equal(validate(cfg), "mount_bay_min_m");
+  cfg = DetectorConfig{};
   cfg.handrail_types[1].bar_length_m = NAN;
   assert_string_equal(validate(cfg), "handrail_types");
   cfg = DetectorConfig{};
@@ -237,6 +276,7 @@ int main() {
   const CMUnitTest tests[] = {
       cmocka_unit_test(test_surfaces_of_a_rack_wall),
       cmocka_unit_test(test_surfaces_too_far_from_the_plane_are_not_mounts),
+      cmocka_unit_test(test_rack_faces_in_front_of_an_empty_bay_are_mounts),
       cmocka_unit_test(test_no_bar_anywhere_leaves_the_plane),
       cmocka_unit_test(test_a_small_surface_is_no_surface),
       cmocka_unit_test(test_huge_and_not_finite_distances_are_ignored),

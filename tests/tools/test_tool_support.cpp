@@ -23,12 +23,14 @@ void test_config_file(void**) {
 
   estimator::DetectorConfig two;
   assert_true(formats::parse_detector_config(
-      "{\"handrail_types\": [\"30 in\", \"module rail\"], \"mount_search_m\": 0.04}", "t.json",
-      &two, &error));
+      "{\"handrail_types\": [\"30 in\", \"module rail\"], \"mount_search_m\": 0.04, "
+      "\"mount_bay_min_m\": 0.3}",
+      "t.json", &two, &error));
   assert_int_equal(two.handrail_type_count, 2);
   assert_string_equal(two.handrail_types[0].name, "30 in");
   assert_near(two.handrail_types[1].bar_length_m, 1.0, 1e-6);
   assert_near(two.mount_search_m, 0.04, 1e-6);
+  assert_near(two.mount_bay_min_m, 0.3, 1e-6);
   estimator::DetectorConfig none;
   assert_true(formats::parse_detector_config("{\"handrail_types\": []}", "n.json", &none, &error));
   assert_int_equal(none.handrail_type_count, 0);

@@ -60,6 +60,12 @@ struct DetectorConfig {
   // are tried best first (the most pixels where that mount puts the bar's
   // front face), at most max_mount_hypotheses, until one holds a handrail.
   float mount_search_m = 0.052f;
+  // Surfaces this far in front of the dominant plane are mounts too: the
+  // plane may be the back of an empty rack bay (about 35 cm deep), with the
+  // rack faces, and the handrail, standing in front of it. Nearer than the
+  // first figure are boxes (5 to 20 cm proud), which are not mounts.
+  float mount_bay_min_m = 0.25f;
+  float mount_bay_max_m = 0.45f;
   float mount_step_m = 0.013f;
   float mount_min_fraction = 0.01f;  // of the valid pixels, for a surface peak
   std::uint32_t max_mount_hypotheses = 3;

@@ -40,6 +40,8 @@ constexpr FloatKey kFloatKeys[] = {
     {"end_search_m", &estimator::DetectorConfig::end_search_m},
     {"target_standoff_m", &estimator::DetectorConfig::target_standoff_m},
     {"mount_search_m", &estimator::DetectorConfig::mount_search_m},
+    {"mount_bay_min_m", &estimator::DetectorConfig::mount_bay_min_m},
+    {"mount_bay_max_m", &estimator::DetectorConfig::mount_bay_max_m},
     {"mount_step_m", &estimator::DetectorConfig::mount_step_m},
     {"mount_min_fraction", &estimator::DetectorConfig::mount_min_fraction},
 };
