@@ -45,6 +45,8 @@ RawRenderer::RawRenderer(const CameraIntrinsics& cam, const ToFSettings& depth_s
     v->resize(n);
   }
   normals_.resize(4 * n);
+  edge_pixels_.resize(n);
+  on_edge_.resize(n);
   sorted_.reserve(n);
 }
 
@@ -97,7 +99,13 @@ void RawRenderer::find_edges(std::uint64_t stream_seed) {
   const int w = static_cast<int>(cam.width), h = static_cast<int>(cam.height);
   const std::vector<float>& range = caster_.true_range_m();
   const std::vector<std::int32_t>& surface = caster_.hit_surface();
-  for (std::vector<float>& e : edge_share_) std::fill(e.begin(), e.end(), 0.0f);
+  // Only the last frame's edge pixels have shares to clear.
+  for (std::size_t k = 0; k < edge_count_; ++k) {
+    const std::int32_t i = edge_pixels_[k];
+    for (std::vector<float>& e : edge_share_) e[static_cast<std::size_t>(i)] = 0.0f;
+    on_edge_[static_cast<std::size_t>(i)] = 0;
+  }
+  edge_count_ = 0;
   if (!settings_.footprint_edges) return;
   constexpr float kFoldM = 0.02f;
   SimRandom rng(stream_seed);
@@ -118,6 +126,11 @@ void RawRenderer::find_edges(std::uint64_t stream_seed) {
     const float t = static_cast<float>(rng.uniform());
     edge_share_[i_side][i] = std::max(0.0f, 0.5f - t);
     edge_share_[j_side][j] = std::max(0.0f, t - 0.5f);
+    for (int p : {i, j}) {
+      if (on_edge_[static_cast<std::size_t>(p)]) continue;
+      on_edge_[static_cast<std::size_t>(p)] = 1;
+      edge_pixels_[edge_count_++] = p;
+    }
   };
   enum { kUp, kDown, kLeft, kRight };
   for (int row = 0; row < h; ++row) {
@@ -128,6 +141,15 @@ void RawRenderer::find_edges(std::uint64_t stream_seed) {
       if (row + 1 < h)
         pair(i, i + w, kDown, kUp, row > 0 ? i - w : i, row + 2 < h ? i + 2 * w : i + w);
     }
+  }
+  // A feature narrower than a pixel can take in more than its area from
+  // both sides: the shares are then scaled to fill it.
+  for (std::size_t k = 0; k < edge_count_; ++k) {
+    const std::size_t i = static_cast<std::size_t>(edge_pixels_[k]);
+    float total = 0.0f;
+    for (const std::vector<float>& e : edge_share_) total += e[i];
+    if (total <= 1.0f) continue;
+    for (std::vector<float>& e : edge_share_) e[i] /= total;
   }
 }
 
@@ -144,33 +166,29 @@ void RawRenderer::form_phasors(int frequency, double temperature_offset_m) {
     own_re_[i] = amplitude_[i] * std::cos(phase);
     own_im_[i] = amplitude_[i] * std::sin(phase);
   }
-  for (int row = 0; row < h; ++row) {
-    for (int col = 0; col < w; ++col) {
-      const int i = row * w + col;
-      const int nb[4] = {row > 0 ? i - w : i, row < h - 1 ? i + w : i, col > 0 ? i - 1 : i,
-                         col < w - 1 ? i + 1 : i};
-      // A feature narrower than a pixel can take in more than its area
-      // from both sides: the shares are then scaled to fill it.
-      float total = 0.0f;
-      for (int side = 0; side < 4; ++side) total += edge_share_[side][i];
-      const float scale = total > 1.0f ? 1.0f / total : 1.0f;
-      float own = 1.0f, re = 0.0f, im = 0.0f, bg = 0.0f;
-      for (int side = 0; side < 4; ++side) {
-        const float share = scale * edge_share_[side][i];
-        if (share <= 0.0f) continue;
-        const int j = nb[side];
-        own -= share;
-        re += share * own_re_[j];
-        im += share * own_im_[j];
-        bg += share * background_[j];
-      }
-      re += own * own_re_[i];
-      im += own * own_im_[i];
-      bg += own * background_[i];
-      sum_re_[i] = re;
-      sum_im_[i] = im;
-      sum_background_[i] = bg;
+  // Off the edges a pixel's light is its own return; on them, mixed.
+  std::copy(own_re_.begin(), own_re_.end(), sum_re_.begin());
+  std::copy(own_im_.begin(), own_im_.end(), sum_im_.begin());
+  std::copy(background_.begin(), background_.end(), sum_background_.begin());
+  for (std::size_t e = 0; e < edge_count_; ++e) {
+    const int i = edge_pixels_[e];
+    const int row = i / w, col = i % w;
+    const int nb[4] = {row > 0 ? i - w : i, row < h - 1 ? i + w : i, col > 0 ? i - 1 : i,
+                       col < w - 1 ? i + 1 : i};
+    float own = 1.0f, re = 0.0f, im = 0.0f, bg = 0.0f;
+    for (int side = 0; side < 4; ++side) {
+      const float share = edge_share_[side][static_cast<std::size_t>(i)];
+      if (share <= 0.0f) continue;
+      const std::size_t j = static_cast<std::size_t>(nb[side]);
+      own -= share;
+      re += share * own_re_[j];
+      im += share * own_im_[j];
+      bg += share * background_[j];
     }
+    const std::size_t u = static_cast<std::size_t>(i);
+    sum_re_[u] = re + own * own_re_[u];
+    sum_im_[u] = im + own * own_im_[u];
+    sum_background_[u] = bg + own * background_[u];
   }
   if (settings_.multipath) {
     for (std::size_t i = 0; i < range.size(); ++i) {

@@ -108,6 +108,10 @@ class RawRenderer {
   // Per frame: the share of each pixel's area that sees its upper, lower,
   // left and right neighbour's surface (0 off an edge).
   std::vector<float> edge_share_[4];
+  // The pixels with a share (the first edge_count_), and which they are.
+  std::vector<std::int32_t> edge_pixels_;
+  std::vector<std::uint8_t> on_edge_;
+  std::size_t edge_count_ = 0;
   // Per frame: the multipath return each pixel gets (amplitude in DN, 0 for
   // none, and its one-way equivalent path), found once for all frequencies.
   std::vector<float> multipath_amplitude_, multipath_path_m_;
