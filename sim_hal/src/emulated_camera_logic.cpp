@@ -27,6 +27,7 @@ void EmulatedPicoFlexx::Impl::power_up() {
   use_case_index = config.use_case_index;
   sequence = 0;
   stream_halted = false;
+  halt_persistent = false;
   replies.clear();
   frame_active = false;
   zero_length_pending = false;
@@ -241,7 +242,7 @@ void EmulatedPicoFlexx::Impl::feed_replies(std::int64_t now_us) {
 
 void EmulatedPicoFlexx::Impl::advance(std::int64_t now_us) {
   feed_replies(now_us);
-  if (streaming && !frame_active && !zero_length_pending && !stream_halted) {
+  if (streaming && !silent && !frame_active && !zero_length_pending && !stream_halted) {
     std::size_t use_case_count = 0;
     const hal::UseCase& use_case = hal::use_cases(&use_case_count)[use_case_index];
     const std::int64_t period_us = hal::frame_period_us(use_case);

@@ -144,7 +144,7 @@ gboolean handle_ioctl(UMockdevIoctlBase*, UMockdevIoctlClient* client, gpointer 
       return TRUE;
     case USBDEVFS_CLEAR_HALT: {
       const unsigned endpoint = *reinterpret_cast<unsigned*>(argument(client));
-      if (endpoint == pico_flexx::kStreamEndpoint) d.stream_halted = false;
+      if (endpoint == pico_flexx::kStreamEndpoint && !d.halt_persistent) d.stream_halted = false;
       ++d.counts.clear_halts;
       complete(client, 0, 0);
       return TRUE;
@@ -314,9 +314,14 @@ bool EmulatedPicoFlexx::replug(std::string* error) {
   return impl_->add_device(error);
 }
 
-void EmulatedPicoFlexx::stall_stream() {
+void EmulatedPicoFlexx::stall_stream(bool persistent) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->stream_halted = true;
+  impl_->halt_persistent = persistent;
+}
+void EmulatedPicoFlexx::set_silent(bool silent) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->silent = silent;
 }
 void EmulatedPicoFlexx::corrupt_next_frames(int frames) {
   std::lock_guard<std::mutex> lock(impl_->mutex);

@@ -54,6 +54,8 @@ struct EmulatedPicoFlexx::Impl {
   std::int64_t stream_start_us = 0;
   std::uint64_t frames_due_so_far = 0;  // frames since streaming began
   bool stream_halted = false;
+  bool halt_persistent = false;  // CLEAR_HALT does not help, RESET does
+  bool silent = false;           // no frames, whatever the host does
 
   // Replies waiting for a reply transfer: the bytes and when they may go.
   struct PendingReply {

@@ -309,6 +309,55 @@ void test_stall_recovery(void**) {
   assert_int_equal(listener.bad_frames.load(), 0);
 }
 
+// A halt that clearing does not lift: the ladder climbs past the
+// re-initialisation to the USB reset, which lifts it.
+void test_ladder_to_usb_reset(void**) {
+  pico_flexx::UsbCamera cam(default_config(), g_rig->clock);
+  assert_int_equal(cam.open(), UsbStatus::kOk);
+  CheckingListener listener;
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kOk);
+  assert_true(frames_arrive(listener, 5, 5000));
+  const std::uint64_t resets_before = g_rig->camera->counts().resets;
+  g_rig->camera->stall_stream(true);
+  assert_true(wait_for([&] { return cam.counters().usb_resets > 0; }, 5000));
+  assert_true(frames_arrive(listener, 10, 3000));
+  const pico_flexx::UsbCounters c = cam.counters();
+  std::printf(
+      "persistent stall: %llu stalls, %llu clear halts, %llu re-initialisations, %llu resets\n",
+      static_cast<unsigned long long>(c.stalls), static_cast<unsigned long long>(c.clear_halts),
+      static_cast<unsigned long long>(c.reinitialisations),
+      static_cast<unsigned long long>(c.usb_resets));
+  assert_int_equal(c.clear_halts, 1);
+  assert_int_equal(c.reinitialisations, 1);
+  assert_int_equal(c.usb_resets, 1);
+  assert_int_equal(g_rig->camera->counts().resets, resets_before + 1);
+  assert_int_equal(cam.state(), CameraState::kStreaming);
+  // The camera came back from its reset in its power-up use case; the
+  // driver put its own back.
+  assert_int_equal(g_rig->camera->counts().use_case_index, 5);
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  assert_int_equal(listener.bad_frames.load(), 0);
+}
+
+// A camera that streams nothing through every rung: lost, SILENT.
+void test_silent_camera_lost(void**) {
+  pico_flexx::UsbCamera cam(default_config(), g_rig->clock);
+  assert_int_equal(cam.open(), UsbStatus::kOk);
+  CheckingListener listener;
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kOk);
+  assert_true(frames_arrive(listener, 3, 5000));
+  g_rig->camera->set_silent(true);
+  assert_true(wait_for([&] { return cam.state() == CameraState::kLost; }, 6000));
+  g_rig->camera->set_silent(false);
+  const pico_flexx::UsbCounters c = cam.counters();
+  assert_int_equal(cam.lost_reason(), pico_flexx::LostReason::kSilent);
+  assert_int_equal(c.silences, 4);  // one per rung, and the last gives up
+  assert_int_equal(c.clear_halts, 1);
+  assert_int_equal(c.reinitialisations, 1);
+  assert_int_equal(c.usb_resets, 1);
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+}
+
 void test_unplug_and_replug(void**) {
   pico_flexx::UsbCamera cam(default_config(), g_rig->clock);
   assert_int_equal(cam.open(), UsbStatus::kOk);
@@ -363,6 +412,8 @@ int main(int, char** argv) {
       cmocka_unit_test(test_streaming_without_loss),
       cmocka_unit_test(test_corrupt_and_short_frames_dropped),
       cmocka_unit_test(test_stall_recovery),
+      cmocka_unit_test(test_ladder_to_usb_reset),
+      cmocka_unit_test(test_silent_camera_lost),
       cmocka_unit_test(test_unplug_and_replug),
       cmocka_unit_test(test_lost_when_not_back),
   };

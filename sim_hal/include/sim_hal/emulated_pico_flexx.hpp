@@ -85,8 +85,12 @@ class EmulatedPicoFlexx {
   bool replug(std::string* error);
 
   // Halts the stream endpoint: its transfers fail with a stall until the
-  // host clears the halt (or resets the device).
-  void stall_stream();
+  // host clears the halt (or resets the device). `persistent`: clearing the
+  // halt does not help, only a reset.
+  void stall_stream(bool persistent = false);
+  // Streams without sending frames (a hung imager), through everything the
+  // host tries, until set false.
+  void set_silent(bool silent);
   // The next `frames` frames: one payload byte flipped after the checksum
   // was computed / cut off after half their bytes.
   void corrupt_next_frames(int frames);

@@ -280,9 +280,13 @@ void UsbCamera::close() {
 
 UsbStatus UsbCamera::apply_settings() {
   ReplyView reply;
-  const std::uint8_t use_case = config_.use_case_index;
+  // A camera may still be streaming from before (a host that went away,
+  // a camera given up as lost): it takes no use case then.
   UsbStatus s =
-      command_locked(Command::kSetUseCase, &use_case, 1, &reply, config_.command_timeout_ms);
+      command_locked(Command::kStopStream, nullptr, 0, &reply, config_.command_timeout_ms);
+  if (s != UsbStatus::kOk) return s;
+  const std::uint8_t use_case = config_.use_case_index;
+  s = command_locked(Command::kSetUseCase, &use_case, 1, &reply, config_.command_timeout_ms);
   if (s != UsbStatus::kOk) return s;
   const std::uint8_t automatic = config_.exposure_automatic ? 1 : 0;
   s = command_locked(Command::kSetExposureMode, &automatic, 1, &reply, config_.command_timeout_ms);
