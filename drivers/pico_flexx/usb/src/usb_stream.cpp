@@ -211,6 +211,9 @@ void UsbCamera::climb_ladder(std::int64_t now_us, bool stalled) {
   cancel_all();
   wait_drained(kDrainTimeoutUs);
   if (gone_pending_.load()) return;  // unplugged meanwhile: the next round handles it
+  // The reason the camera is lost if the ladder runs out: what sent it up
+  // the first rung, unless a rung itself failed on the way.
+  if (rung_ == 0) ladder_reason_ = stalled ? LostReason::kStalled : LostReason::kSilent;
   ++rung_;
   UsbStatus s = UsbStatus::kOk;
   ReplyView reply;
@@ -252,13 +255,14 @@ void UsbCamera::climb_ladder(std::int64_t now_us, bool stalled) {
       break;
     }
     default:
-      become_lost(stalled ? LostReason::kStalled : LostReason::kSilent);
+      become_lost(ladder_reason_);
       return;
   }
   // The partial frame in progress is gone with the cancelled transfers.
   assembler_.abandon_frame();
   last_frame_us_ = now_us;
   if (s != UsbStatus::kOk) {
+    ladder_reason_ = LostReason::kReinitFailed;
     failed_pending_ = true;  // the next round climbs on
     return;
   }

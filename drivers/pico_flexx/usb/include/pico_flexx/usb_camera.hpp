@@ -76,7 +76,7 @@ enum class LostReason : std::uint8_t {
   kUnplugged,     // not back within reconnect_window_ms
   kStalled,       // the stream kept stalling through the ladder
   kSilent,        // no frames through the ladder
-  kReinitFailed,  // the camera would not take its settings again
+  kReinitFailed,  // a rung itself failed (the camera refused its settings, a reset failed)
 };
 const char* to_string(LostReason reason);
 
@@ -226,6 +226,7 @@ class UsbCamera {
   std::atomic<bool> resubmit_{false};
   std::int64_t last_frame_us_ = 0;
   int rung_ = 0;
+  LostReason ladder_reason_ = LostReason::kNone;
   std::atomic<bool> stalled_pending_{false}, failed_pending_{false}, gone_pending_{false};
   std::int64_t unplugged_since_us_ = 0, next_search_us_ = 0;
 
