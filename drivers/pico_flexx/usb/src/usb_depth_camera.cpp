@@ -149,6 +149,8 @@ bool UsbDepthCamera::is_capturing() const {
 }
 
 void UsbDepthCamera::on_raw_frame(const RawFrameInfo&, const tof::RawFrame& frame) {
+  delivering_exposure_us_ = frame.exposure_us;
+  delivering_frequencies_ = tof::frequency_count(frame.mode);
   (void)pipeline_->on_raw_frame(frame);
 }
 

@@ -43,6 +43,10 @@ class UsbDepthCamera final : public hal::DepthCamera, private RawFrameListener {
   const std::string& error() const { return error_; }
   UsbCamera& usb() { return usb_; }
   const RawDepthPipeline* pipeline() const { return pipeline_.get(); }
+  // The raw frame behind the depth frame being delivered: read them in the
+  // listener's call (the royale layer reports them with the frame).
+  std::uint32_t delivering_exposure_us() const { return delivering_exposure_us_; }
+  int delivering_frequencies() const { return delivering_frequencies_; }
 
  private:
   void on_raw_frame(const RawFrameInfo& info, const tof::RawFrame& frame) override;
@@ -53,6 +57,8 @@ class UsbDepthCamera final : public hal::DepthCamera, private RawFrameListener {
   std::unique_ptr<RawDepthPipeline> pipeline_;
   hal::DepthDataListener* listener_ = nullptr;
   std::string error_;
+  std::uint32_t delivering_exposure_us_ = 0;
+  int delivering_frequencies_ = 0;
 };
 
 }  // namespace pico_flexx

@@ -1,0 +1,55 @@
+#pragma once
+// The camera device of royale's C++ API, the part applications use (level
+// 1 access). Created by CameraManager; nothing throws, every call returns
+// a CameraStatus.
+#include <cstdint>
+
+#include "royale/Definitions.hpp"
+#include "royale/ExposureMode.hpp"
+#include "royale/IDepthDataListener.hpp"
+#include "royale/LensParameters.hpp"
+#include "royale/Status.hpp"
+
+namespace royale {
+
+class ICameraDevice {
+ public:
+  virtual ~ICameraDevice() = default;
+
+  // Opens the camera, reads its calibration, builds the processing. Every
+  // other call but getId and getCameraName needs it first.
+  virtual royale::CameraStatus initialize() = 0;
+
+  virtual royale::CameraStatus getId(royale::String& id) const = 0;
+  virtual royale::CameraStatus getCameraName(royale::String& cameraName) const = 0;
+
+  virtual royale::CameraStatus setUseCase(const royale::String& name) = 0;
+  virtual royale::CameraStatus getUseCases(royale::Vector<royale::String>& useCases) const = 0;
+  virtual royale::CameraStatus getCurrentUseCase(royale::String& useCase) const = 0;
+  virtual royale::CameraStatus getFrameRate(uint16_t& frameRate) const = 0;
+
+  virtual royale::CameraStatus setExposureTime(uint32_t exposureTime,
+                                               royale::StreamId streamId = 0) = 0;
+  virtual royale::CameraStatus setExposureMode(royale::ExposureMode exposureMode,
+                                               royale::StreamId streamId = 0) = 0;
+  virtual royale::CameraStatus getExposureMode(royale::ExposureMode& exposureMode,
+                                               royale::StreamId streamId = 0) const = 0;
+  virtual royale::CameraStatus getExposureLimits(royale::Pair<uint32_t, uint32_t>& exposureLimits,
+                                                 royale::StreamId streamId = 0) const = 0;
+
+  virtual royale::CameraStatus registerDataListener(royale::IDepthDataListener* listener) = 0;
+  virtual royale::CameraStatus unregisterDataListener() = 0;
+
+  virtual royale::CameraStatus startCapture() = 0;
+  virtual royale::CameraStatus stopCapture() = 0;
+
+  virtual royale::CameraStatus getMaxSensorWidth(uint16_t& maxSensorWidth) const = 0;
+  virtual royale::CameraStatus getMaxSensorHeight(uint16_t& maxSensorHeight) const = 0;
+  virtual royale::CameraStatus getLensParameters(royale::LensParameters& param) const = 0;
+
+  virtual royale::CameraStatus isConnected(bool& connected) const = 0;
+  virtual royale::CameraStatus isCalibrated(bool& calibrated) const = 0;
+  virtual royale::CameraStatus isCapturing(bool& capturing) const = 0;
+};
+
+}  // namespace royale

@@ -1,0 +1,3 @@
+#pragma once
+// As in royale: the type is in Definitions.hpp.
+#include "royale/Definitions.hpp"

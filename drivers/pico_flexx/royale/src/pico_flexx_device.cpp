@@ -1,0 +1,222 @@
+#include "pico_flexx_device.hpp"
+
+#include <cstddef>
+
+#include "hal/use_case.hpp"
+#include "tof/raw_frame.hpp"
+
+namespace royale {
+namespace {
+
+// The values are the same (Status.hpp): only the type changes.
+royale::CameraStatus from_hal(hal::CameraStatus status) {
+  return static_cast<royale::CameraStatus>(static_cast<int>(status));
+}
+
+// This camera has one stream per use case; 0 names it (as royale's
+// single-stream convention has it), and so does every frame.
+constexpr royale::StreamId kStream = 0;
+
+constexpr int kDepthDataVersion = 1;
+
+}  // namespace
+
+PicoFlexxDevice::PicoFlexxDevice(const pico_flexx::UsbCameraConfig& usb, const royale::String& id)
+    : id_(id), camera_(usb, pico_flexx::PipelineConfig{}, clock_) {}
+
+PicoFlexxDevice::~PicoFlexxDevice() {
+  // Before the members go: no frame may be delivered into a half-destroyed
+  // device.
+  if (camera_.is_capturing()) (void)camera_.stop_capture();
+}
+
+royale::CameraStatus PicoFlexxDevice::initialize() {
+  if (initialized_) return royale::CameraStatus::DEVICE_ALREADY_INITIALIZED;
+  const hal::CameraStatus s = camera_.initialize();
+  if (s != hal::CameraStatus::kSuccess) return from_hal(s);
+  // Every buffer a frame needs, now: a frame only copies into them.
+  data_.version = kDepthDataVersion;
+  data_.streamId = kStream;
+  data_.points.resize(tof::kPixels);
+  data_.exposureTimes.reserve(2);  // one per modulation frequency, at most two
+  const hal::CameraStatus r = camera_.register_data_listener(this);
+  if (r != hal::CameraStatus::kSuccess) return from_hal(r);
+  initialized_ = true;
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getId(royale::String& id) const {
+  id = id_;
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getCameraName(royale::String& cameraName) const {
+  cameraName = "PICOFLEXX";
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::setUseCase(const royale::String& name) {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  return from_hal(camera_.set_use_case(name.c_str()));
+}
+
+royale::CameraStatus PicoFlexxDevice::getUseCases(royale::Vector<royale::String>& useCases) const {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  std::size_t count = 0;
+  const hal::UseCase* all = hal::use_cases(&count);
+  useCases.clear();
+  for (std::size_t i = 0; i < count; ++i) useCases.push_back(all[i].name);
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getCurrentUseCase(royale::String& useCase) const {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  const hal::UseCase* current = nullptr;
+  const hal::CameraStatus s = camera_.current_use_case(&current);
+  if (s != hal::CameraStatus::kSuccess) return from_hal(s);
+  useCase = current->name;
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getFrameRate(uint16_t& frameRate) const {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  const hal::UseCase* current = nullptr;
+  const hal::CameraStatus s = camera_.current_use_case(&current);
+  if (s != hal::CameraStatus::kSuccess) return from_hal(s);
+  frameRate = current->frame_rate_hz;
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::setExposureTime(uint32_t exposureTime,
+                                                      royale::StreamId streamId) {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  if (streamId != kStream) return royale::CameraStatus::INVALID_VALUE;
+  // The camera refuses it while automatic: EXPOSURE_MODE_INVALID, as royale.
+  return from_hal(camera_.set_exposure_time(exposureTime));
+}
+
+royale::CameraStatus PicoFlexxDevice::setExposureMode(royale::ExposureMode exposureMode,
+                                                      royale::StreamId streamId) {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  if (streamId != kStream) return royale::CameraStatus::INVALID_VALUE;
+  const hal::ExposureMode mode = exposureMode == royale::ExposureMode::AUTOMATIC
+                                     ? hal::ExposureMode::kAutomatic
+                                     : hal::ExposureMode::kManual;
+  const hal::CameraStatus s = camera_.set_exposure_mode(mode);
+  if (s == hal::CameraStatus::kSuccess) exposure_mode_ = exposureMode;
+  return from_hal(s);
+}
+
+royale::CameraStatus PicoFlexxDevice::getExposureMode(royale::ExposureMode& exposureMode,
+                                                      royale::StreamId streamId) const {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  if (streamId != kStream) return royale::CameraStatus::INVALID_VALUE;
+  exposureMode = exposure_mode_;
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getExposureLimits(
+    royale::Pair<uint32_t, uint32_t>& exposureLimits, royale::StreamId streamId) const {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  if (streamId != kStream) return royale::CameraStatus::INVALID_VALUE;
+  const hal::UseCase* current = nullptr;
+  const hal::CameraStatus s = camera_.current_use_case(&current);
+  if (s != hal::CameraStatus::kSuccess) return from_hal(s);
+  // PROTOCOL.md, SET_EXPOSURE_TIME: 1 us .. the use case's longest.
+  exposureLimits = {1u, current->max_exposure_us};
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::registerDataListener(royale::IDepthDataListener* listener) {
+  if (listener == nullptr) return royale::CameraStatus::INVALID_VALUE;
+  std::lock_guard<std::mutex> lock(listener_mutex_);
+  listener_ = listener;
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::unregisterDataListener() {
+  std::lock_guard<std::mutex> lock(listener_mutex_);
+  listener_ = nullptr;
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::startCapture() {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  {
+    // royale starts no capture without a listener to take the frames.
+    std::lock_guard<std::mutex> lock(listener_mutex_);
+    if (listener_ == nullptr) return royale::CameraStatus::LOGIC_ERROR;
+  }
+  return from_hal(camera_.start_capture());
+}
+
+royale::CameraStatus PicoFlexxDevice::stopCapture() {
+  if (!camera_.is_capturing()) return royale::CameraStatus::SUCCESS;
+  return from_hal(camera_.stop_capture());
+}
+
+royale::CameraStatus PicoFlexxDevice::getMaxSensorWidth(uint16_t& maxSensorWidth) const {
+  maxSensorWidth = static_cast<uint16_t>(tof::kWidthPx);
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getMaxSensorHeight(uint16_t& maxSensorHeight) const {
+  maxSensorHeight = static_cast<uint16_t>(tof::kHeightPx);
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getLensParameters(royale::LensParameters& param) const {
+  hal::LensParameters lens;
+  const hal::CameraStatus s = camera_.lens_parameters(&lens);
+  if (s != hal::CameraStatus::kSuccess) return from_hal(s);
+  param.principalPoint = {static_cast<float>(lens.cx_px), static_cast<float>(lens.cy_px)};
+  param.focalLength = {static_cast<float>(lens.fx_px), static_cast<float>(lens.fy_px)};
+  param.distortionTangential = {static_cast<float>(lens.p1), static_cast<float>(lens.p2)};
+  param.distortionRadial = {static_cast<float>(lens.k1), static_cast<float>(lens.k2),
+                            static_cast<float>(lens.k3)};
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::isConnected(bool& connected) const {
+  connected = camera_.is_connected();
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::isCalibrated(bool& calibrated) const {
+  // initialize() succeeds only on the camera's own calibration.
+  calibrated = initialized_;
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::isCapturing(bool& capturing) const {
+  capturing = camera_.is_capturing();
+  return royale::CameraStatus::SUCCESS;
+}
+
+void PicoFlexxDevice::on_new_data(const hal::DepthFrame& frame) {
+  std::lock_guard<std::mutex> lock(listener_mutex_);
+  if (listener_ == nullptr) return;
+  const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
+  if (n > data_.points.capacity()) return;  // cannot happen: the sensor's size
+  // Within the capacities reserved at initialize(): no allocation.
+  data_.points.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const hal::DepthPoint& p = frame.points[i];
+    royale::DepthPoint& q = data_.points[i];
+    q.x = p.x_m;
+    q.y = p.y_m;
+    q.z = p.z_m;
+    q.noise = p.noise_m;
+    q.grayValue = p.gray_value;
+    q.depthConfidence = p.confidence;
+  }
+  data_.timeStamp = std::chrono::microseconds(frame.capture_time_us);
+  data_.width = static_cast<uint16_t>(frame.width);
+  data_.height = static_cast<uint16_t>(frame.height);
+  const int frequencies = camera_.delivering_frequencies();
+  data_.exposureTimes.resize(frequencies < 1 ? 1 : (frequencies > 2 ? 2 : frequencies));
+  for (uint32_t& t : data_.exposureTimes) t = camera_.delivering_exposure_us();
+  listener_->onNewData(&data_);
+}
+
+}  // namespace royale

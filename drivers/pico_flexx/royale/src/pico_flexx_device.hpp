@@ -1,0 +1,63 @@
+#pragma once
+// royale::ICameraDevice on the project's Pico Flexx driver: the USB driver
+// and the robot's ToF processing behind hal::DepthCamera
+// (pico_flexx::UsbDepthCamera), its depth frames copied into one
+// royale::DepthData sized at initialize(), so that nothing is allocated
+// per frame.
+#include <mutex>
+
+#include "hal/clock.hpp"
+#include "hal/depth_camera.hpp"
+#include "pico_flexx/usb_depth_camera.hpp"
+#include "royale/ICameraDevice.hpp"
+
+namespace royale {
+
+class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListener {
+ public:
+  PicoFlexxDevice(const pico_flexx::UsbCameraConfig& usb, const royale::String& id);
+  ~PicoFlexxDevice() override;
+  PicoFlexxDevice(const PicoFlexxDevice&) = delete;
+  PicoFlexxDevice& operator=(const PicoFlexxDevice&) = delete;
+
+  royale::CameraStatus initialize() override;
+  royale::CameraStatus getId(royale::String& id) const override;
+  royale::CameraStatus getCameraName(royale::String& cameraName) const override;
+  royale::CameraStatus setUseCase(const royale::String& name) override;
+  royale::CameraStatus getUseCases(royale::Vector<royale::String>& useCases) const override;
+  royale::CameraStatus getCurrentUseCase(royale::String& useCase) const override;
+  royale::CameraStatus getFrameRate(uint16_t& frameRate) const override;
+  royale::CameraStatus setExposureTime(uint32_t exposureTime, royale::StreamId streamId) override;
+  royale::CameraStatus setExposureMode(royale::ExposureMode exposureMode,
+                                       royale::StreamId streamId) override;
+  royale::CameraStatus getExposureMode(royale::ExposureMode& exposureMode,
+                                       royale::StreamId streamId) const override;
+  royale::CameraStatus getExposureLimits(royale::Pair<uint32_t, uint32_t>& exposureLimits,
+                                         royale::StreamId streamId) const override;
+  royale::CameraStatus registerDataListener(royale::IDepthDataListener* listener) override;
+  royale::CameraStatus unregisterDataListener() override;
+  royale::CameraStatus startCapture() override;
+  royale::CameraStatus stopCapture() override;
+  royale::CameraStatus getMaxSensorWidth(uint16_t& maxSensorWidth) const override;
+  royale::CameraStatus getMaxSensorHeight(uint16_t& maxSensorHeight) const override;
+  royale::CameraStatus getLensParameters(royale::LensParameters& param) const override;
+  royale::CameraStatus isConnected(bool& connected) const override;
+  royale::CameraStatus isCalibrated(bool& calibrated) const override;
+  royale::CameraStatus isCapturing(bool& capturing) const override;
+
+ private:
+  // The driver's frame, on its event thread.
+  void on_new_data(const hal::DepthFrame& frame) override;
+
+  // Declared before camera_ so that they outlive its event thread.
+  hal::MonotonicClock clock_;
+  royale::String id_;
+  bool initialized_ = false;
+  royale::ExposureMode exposure_mode_ = royale::ExposureMode::MANUAL;
+  std::mutex listener_mutex_;  // a listener unregistered is not called again
+  royale::IDepthDataListener* listener_ = nullptr;
+  royale::DepthData data_{};
+  pico_flexx::UsbDepthCamera camera_;
+};
+
+}  // namespace royale

@@ -1,0 +1,221 @@
+// royale's sample program (drivers/pico_flexx/royale/samples), an
+// application of the royale API only, run against the emulated camera (a
+// wall 1 m ahead) through real libusb under umockdev's preload library. It
+// runs in this process, its main() renamed: the emulated camera serves
+// only the process that owns it (its handler reads and writes the host's
+// URBs in place). Its output must name the camera, its use cases and
+// lens, frames and a centre depth of 1 m; its exit status 0.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "royale.hpp"
+
+#define main royale_sample_main
+#include "../../drivers/pico_flexx/royale/samples/sample_camera_info.cpp"
+#undef main
+
+#include "cmocka_cpp.hpp"
+#include "sim_hal/rendered_frame_source.hpp"
+#include "tof/calibration_io.hpp"
+#include "umockdev_preload.hpp"
+
+namespace {
+
+struct FixedPose final : sim_hal::CameraPoseSource {
+  Eigen::Isometry3d T_world_cam(std::int64_t) override {
+    return sim_hal::camera_pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(-1, 0, 0),
+                                Eigen::Vector3d(0, 0, 1), Eigen::Vector3d::Zero());
+  }
+};
+
+// The number after `key` on its line, or NaN when the line is missing.
+double value_after(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find(key);
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(text.c_str() + at + key.size(), nullptr);
+}
+
+// The emulated camera, shared by the tests: a wall 1 m ahead.
+struct Rig {
+  hal::MonotonicClock clock;
+  sim_hal::Scene scene;
+  tof::Calibration truth = sim_hal::simulated_calibration(sim_hal::pico_flexx_intrinsics(), 7);
+  sim_hal::RawRenderer renderer{sim_hal::pico_flexx_intrinsics(), sim_hal::ToFSettings{},
+                                sim_hal::RawRenderSettings{}, truth};
+  FixedPose pose;
+  std::unique_ptr<sim_hal::RenderedFrameSource> source;
+  sim_hal::EmulatedCameraConfig config;
+  std::unique_ptr<sim_hal::EmulatedPicoFlexx> camera;
+};
+Rig* g_rig = nullptr;
+
+int set_up(void**) {
+  g_rig = new Rig;
+  g_rig->scene.add_wall(Eigen::Vector3d(-1.0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                        Eigen::Vector3d(0, 0, 1), 40.0, 40.0, 0.6);
+  g_rig->source = std::make_unique<sim_hal::RenderedFrameSource>(g_rig->scene, g_rig->pose,
+                                                                 g_rig->renderer, g_rig->clock, 11);
+  g_rig->config.calibration = tof::calibration_to_json(g_rig->truth);
+  std::string error;
+  g_rig->camera =
+      sim_hal::EmulatedPicoFlexx::create(g_rig->config, g_rig->source.get(), g_rig->clock, &error);
+  if (!g_rig->camera) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return -1;
+  }
+  return 0;
+}
+
+int tear_down(void**) {
+  delete g_rig;
+  return 0;
+}
+
+void test_sample_against_the_emulated_camera(void**) {
+  const Rig& rig = *g_rig;
+  std::ostringstream captured;
+  std::streambuf* const cout = std::cout.rdbuf(captured.rdbuf());
+  char name[] = "royale_sample_camera_info";
+  char seconds[] = "3";
+  char* args[] = {name, seconds, nullptr};
+  const int status = royale_sample_main(2, args);
+  std::cout.rdbuf(cout);
+  const std::string out = captured.str();
+  std::printf("%s", out.c_str());
+  assert_int_equal(status, 0);
+
+  assert_true(out.find("Detected 1 camera(s).") != std::string::npos);
+  assert_true(out.find("Camera ID: " + rig.config.serial) != std::string::npos);
+  assert_true(out.find("Camera name: PICOFLEXX") != std::string::npos);
+  assert_int_equal(static_cast<int>(value_after(out, "Use cases: ")), 6);
+  assert_true(out.find("    MODE_9_5FPS_2000") != std::string::npos);
+  assert_true(out.find("Current use case: MODE_5_45FPS_500 (45 fps)") != std::string::npos);
+  assert_true(out.find("Exposure limits: 1 .. 500 us") != std::string::npos);
+  // The lens from the camera's own calibration, read over USB.
+  assert_near(value_after(out, "fx/fy "), rig.truth.lens.fx_px, 0.01);
+  // Three seconds at 45 fps, with room for a loaded host (and the sanitizer).
+  const double frames = value_after(out, "Frames received: ");
+  assert_true(frames >= 10);
+  assert_near(value_after(out, "Centre depth: "), 1.0, 0.01);
+}
+
+// Keeps what the royale tests check of each frame: the buffers' addresses
+// (the same every frame: nothing allocated per frame), the exposures.
+class RecordingListener final : public royale::IDepthDataListener {
+ public:
+  void onNewData(const royale::DepthData* data) override {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (frames == 0) {
+      first_points = data->points.data();
+      first_exposures = data->exposureTimes.data();
+    }
+    moved = moved || data->points.data() != first_points ||
+            data->exposureTimes.data() != first_exposures;
+    ++frames;
+    exposures = data->exposureTimes.size();
+    size_ok = size_ok && data->points.size() == static_cast<size_t>(data->width) * data->height;
+    const royale::DepthPoint& p =
+        data->points[static_cast<size_t>(data->height / 2) * data->width + data->width / 2];
+    if (p.depthConfidence > 0) {
+      centre_sum += p.z;
+      ++centre_frames;
+    }
+  }
+  long count() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return frames;
+  }
+  std::mutex mutex;
+  long frames = 0, centre_frames = 0;
+  double centre_sum = 0.0;
+  std::size_t exposures = 0;
+  const void* first_points = nullptr;
+  const void* first_exposures = nullptr;
+  bool moved = false, size_ok = true;
+};
+
+bool wait_for_frames(RecordingListener* listener, long frames) {
+  for (int waited_ms = 0; waited_ms < 20000; waited_ms += 50) {
+    if (listener->count() >= frames) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return false;
+}
+
+// The API's contract beyond the sample: statuses before initialize, an
+// unknown id and use case, a use-case change (two frequencies, two
+// exposure times), a capture refused without a listener, no frame after
+// unregistering, the frame's buffers reused.
+void test_api_contract(void**) {
+  using royale::CameraStatus;
+  assert_string_equal(royale::getStatusString(CameraStatus::USECASE_NOT_SUPPORTED).c_str(),
+                      "USECASE_NOT_SUPPORTED");
+  assert_int_equal(static_cast<int>(CameraStatus::DEVICE_NOT_INITIALIZED), 5004);
+  royale::CameraManager manager;
+  assert_null(manager.createCamera(g_rig->config.serial).get());  // not listed yet
+  const royale::Vector<royale::String> ids = manager.getConnectedCameraList();
+  assert_int_equal(ids.size(), 1);
+  assert_null(manager.createCamera("0000-0000-0000").get());
+  std::unique_ptr<royale::ICameraDevice> device = manager.createCamera(ids[0]);
+  assert_non_null(device.get());
+  RecordingListener listener;
+  assert_int_equal(device->setUseCase("MODE_9_5FPS_2000"), CameraStatus::DEVICE_NOT_INITIALIZED);
+  assert_int_equal(device->startCapture(), CameraStatus::DEVICE_NOT_INITIALIZED);
+  assert_int_equal(device->initialize(), CameraStatus::SUCCESS);
+  assert_int_equal(device->initialize(), CameraStatus::DEVICE_ALREADY_INITIALIZED);
+  bool calibrated = false;
+  assert_int_equal(device->isCalibrated(calibrated), CameraStatus::SUCCESS);
+  assert_true(calibrated);
+  assert_int_equal(device->setUseCase("MODE_7_NONE"), CameraStatus::USECASE_NOT_SUPPORTED);
+  assert_int_equal(device->setUseCase("MODE_9_10FPS_1000"), CameraStatus::SUCCESS);
+  royale::String use_case;
+  assert_int_equal(device->getCurrentUseCase(use_case), CameraStatus::SUCCESS);
+  assert_string_equal(use_case.c_str(), "MODE_9_10FPS_1000");
+  royale::Pair<uint32_t, uint32_t> limits;
+  assert_int_equal(device->getExposureLimits(limits), CameraStatus::SUCCESS);
+  assert_int_equal(limits.second, 1000);
+  assert_int_equal(device->setExposureTime(limits.second + 1),
+                   CameraStatus::EXPOSURE_TIME_NOT_SUPPORTED);
+  assert_int_equal(device->setExposureTime(800), CameraStatus::SUCCESS);
+  assert_int_equal(device->setExposureTime(800, 7), CameraStatus::INVALID_VALUE);
+  assert_int_equal(device->startCapture(), CameraStatus::LOGIC_ERROR);  // no listener
+  assert_int_equal(device->registerDataListener(nullptr), CameraStatus::INVALID_VALUE);
+  assert_int_equal(device->registerDataListener(&listener), CameraStatus::SUCCESS);
+  assert_int_equal(device->startCapture(), CameraStatus::SUCCESS);
+  bool capturing = false;
+  assert_int_equal(device->isCapturing(capturing), CameraStatus::SUCCESS);
+  assert_true(capturing);
+  assert_true(wait_for_frames(&listener, 12));
+  assert_int_equal(device->unregisterDataListener(), CameraStatus::SUCCESS);
+  const long at_unregister = listener.count();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // three frame periods
+  assert_int_equal(listener.count(), at_unregister);
+  assert_int_equal(device->stopCapture(), CameraStatus::SUCCESS);
+  assert_int_equal(device->stopCapture(), CameraStatus::SUCCESS);  // not capturing: nothing to do
+  std::lock_guard<std::mutex> lock(listener.mutex);
+  std::printf("royale API, MODE_9_10FPS_1000: %ld frames, centre %.4f m over %ld\n",
+              listener.frames, listener.centre_sum / listener.centre_frames,
+              listener.centre_frames);
+  assert_false(listener.moved);
+  assert_true(listener.size_ok);
+  assert_int_equal(listener.exposures, 2);
+  assert_true(listener.centre_frames > 6);
+  assert_near(listener.centre_sum / listener.centre_frames, 1.0, 0.01);
+}
+
+}  // namespace
+
+int main(int, char** argv) {
+  umockdev_preload::ensure(argv);
+  const struct CMUnitTest tests[] = {cmocka_unit_test(test_sample_against_the_emulated_camera),
+                                     cmocka_unit_test(test_api_contract)};
+  return cmocka_run_group_tests(tests, set_up, tear_down);
+}
