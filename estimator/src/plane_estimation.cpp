@@ -245,10 +245,10 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
   for (int pass = 0; pass < 2; ++pass) {
     if (!refit_plane(rx, ry, rz, m_refit, cfg.plane_inlier_m, &best, &support)) return result;
   }
-  // Kept only if it succeeds: with too few points near the mode (a very
-  // noisy far wall) the broad fit stands.
   // The normal the faces share, through the broad plane's own centre of
-  // the view; the refit below moves it onto the most populated face.
+  // the view; the refit below moves it onto the most populated face. Kept
+  // only if that refit succeeds: with too few points near the mode (a very
+  // noisy far wall) the broad fit stands.
   const float* sx = ws.score_x_m.get();
   const float* sy = ws.score_y_m.get();
   const float* sz = ws.score_z_m.get();
