@@ -67,6 +67,7 @@ class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTa
   // corrupt (wrong size, dropped by the camera task).
   void occlude_until(std::int64_t t_us) { occluded_until_us_ = t_us; }
   void corrupt_next_frames(int n) { corrupt_frames_ = n; }
+  bool occluded(std::int64_t now_us) const { return now_us < occluded_until_us_.load(); }
   HilSensors& sensors() { return sensors_; }
 
   Eigen::Isometry3d body_pose() const;

@@ -165,12 +165,18 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
 
   if (const JsonValue* v = top.object("camera")) {
     Section s(*v, "camera", path, error);
-    if (!s.only({"position_m", "rpy_deg"})) return false;
+    if (!s.only({"position_m", "rpy_deg", "serial"})) return false;
     double p[3] = {c.T_body_cam.translation().x(), c.T_body_cam.translation().y(),
                    c.T_body_cam.translation().z()};
     double rpy[3] = {0.0, 0.0, 0.0};
     s.numbers("position_m", p, 3, -2.0, 2.0);
     s.numbers("rpy_deg", rpy, 3, -360.0, 360.0);
+    s.text("serial", &c.camera_serial);
+    if (s.ok() && c.camera_serial.size() > kCameraSerialChars) {
+      return s.fail(*v->find("serial"), "serial",
+                    "longer than a Pico Flexx serial number (" +
+                        std::to_string(kCameraSerialChars) + " characters)");
+    }
     if (!s.ok()) return false;
     c.T_body_cam.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
     if (v->find("rpy_deg")) {

@@ -64,16 +64,26 @@ std::optional<int> check_combination(Options* o, bool tasks_given) {
   if (!o->faults.empty() && !o->needs_sim_world()) {
     return usage_error("--fault needs --hal sim with the camera or arm task in this process");
   }
-  if (o->camera != "raw" && o->camera != "depth") return usage_error("--camera is raw or depth");
+  if (o->camera != "raw" && o->camera != "depth" && o->camera != "usb") {
+    return usage_error("--camera is raw, depth or usb");
+  }
   if (o->hal == "real" && (o->camera_given || !o->tof_calibration.empty())) {
     return usage_error(
         "--camera and --tof-calibration choose the simulated camera's path (--hal sim); with "
-        "--hal real the camera task plays --camera-replay");
+        "--hal real the camera task reads the Pico Flexx over USB, or plays --camera-replay");
   }
-  if (o->hal == "real" && o->runs(kCameraTask) && o->camera_replay.empty()) {
+  if (!o->tof_calibration.empty() && o->camera != "raw") {
     return usage_error(
-        "the Pico Flexx driver is not in this build yet: give the camera task recorded frames "
-        "with --camera-replay DIR, or run without it (--tasks)");
+        "--tof-calibration is the in-process raw path's file; over USB (--camera usb) the "
+        "calibration is read from the camera");
+  }
+  for (const auto& fault : o->faults) {
+    const bool usb_fault = fault.first == "usb-unplug" || fault.first == "usb-stall";
+    if (usb_fault && !(o->hal == "sim" && o->camera == "usb" && o->runs(kCameraTask))) {
+      return usage_error("--fault " + fault.first +
+                         " acts on the emulated camera: it needs --hal sim --camera usb with the "
+                         "camera task");
+    }
   }
   return std::nullopt;
 }
@@ -119,10 +129,14 @@ void print_usage(std::FILE* out) {
                "                        approach starts: servo-silent, gripper-overcurrent,\n"
                "                        occlude (1 s), corrupt-frames (5 frames), imu-silent\n"
                "                        (0.5 s), gp-jump (the GP pose 20 cm off from then on),\n"
-               "                        handrail-lost (the camera sees nothing from then on)\n"
-               "  --camera raw|depth    sim: the frames' path (default raw): the raw renderer's\n"
-               "                        phase frames through the robot's ToF processing, or\n"
-               "                        the depth renderer's frames\n"
+               "                        handrail-lost (the camera sees nothing from then on);\n"
+               "                        with --camera usb also usb-unplug (the cable out for\n"
+               "                        0.5 s) and usb-stall (the stream endpoint halted)\n"
+               "  --camera raw|depth|usb sim: the frames' path (default raw): the raw renderer's\n"
+               "                        phase frames through the robot's ToF processing; the\n"
+               "                        depth renderer's frames; or usb: the raw frames from\n"
+               "                        an emulated Pico Flexx (umockdev) read by the robot's\n"
+               "                        USB driver through libusb, then the ToF processing\n"
                "  --tof-calibration FILE sim, raw path: where the simulated unit writes its\n"
                "                        calibration file, which the processing then reads\n"
                "                        (default: a temporary file, removed at exit)\n"
@@ -134,7 +148,8 @@ void print_usage(std::FILE* out) {
                "  --arm-port DEV        real: the Dynamixel bus (default from the config)\n"
                "  --gripper-port DEV    real: the gripper board (default from the config)\n"
                "  --camera-replay DIR   real: PCD frames played at the use case's rate in place\n"
-               "                        of the camera\n"
+               "                        of the camera (without it: the Pico Flexx over USB,\n"
+               "                        the first one found or the config's camera.serial)\n"
                "  --quiet               no progress line\n"
                "  -h, --help            this text\n");
 }
@@ -230,7 +245,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
       }
       if (name != "servo-silent" && name != "gripper-overcurrent" && name != "occlude" &&
           name != "corrupt-frames" && name != "imu-silent" && name != "gp-jump" &&
-          name != "handrail-lost") {
+          name != "handrail-lost" && name != "usb-unplug" && name != "usb-stall") {
         return usage_error("unknown fault \"" + name + "\"");
       }
       o->faults.push_back({name, t});

@@ -38,7 +38,8 @@ struct Options {
   std::string arm_port, gripper_port, camera_replay, handrail;
   bool quiet = false;
   // sim: the camera's path to the estimator, "raw" (raw phase frames through
-  // the robot's ToF processing) or "depth" (the depth renderer); and where
+  // the robot's ToF processing), "depth" (the depth renderer) or "usb" (the
+  // emulated Pico Flexx read by the USB driver); and where
   // the simulated unit writes its calibration file for the processing to
   // read (empty: a file of this process's in the temporary directory).
   std::string camera = "raw";
@@ -51,11 +52,12 @@ struct Options {
   // The simulated world (flyer, rendered camera, devices on ptys) is built
   // when a task here needs the simulated HAL's camera or devices.
   bool needs_sim_world() const { return hal == "sim" && (runs(kCameraTask) || runs(kArmTask)); }
-  // What the summary names as the frames' path: "raw", "depth", "replay",
+  // What the summary names as the frames' path: "raw", "depth", "usb", "replay",
   // or "" when no camera task runs here.
   std::string camera_path() const {
     if (!runs(kCameraTask)) return "";
-    return hal == "sim" ? camera : "replay";
+    if (hal == "sim") return camera;
+    return camera_replay.empty() ? "usb" : "replay";
   }
 };
 

@@ -3,7 +3,8 @@
 // LCM; --tasks runs a subset, the rest running in other processes.
 //
 //   fsw_app --hal sim --scenario FILE [--perch] ...   hardware-in-loop on the simulated HAL
-//   fsw_app --hal real --camera-replay DIR ...        robot ports, recorded frames
+//   fsw_app --hal sim --camera usb ...                the same through the USB driver
+//   fsw_app --hal real [--camera-replay DIR] ...      robot ports, the Pico Flexx or recorded frames
 //   fsw_app --frames-from-log RUN.lcmlog ...          a recorded run into the estimator
 //
 // With --perch it commands PERCH, shows progress, and ends with a summary
@@ -27,6 +28,7 @@
 #include "arm_io/ax12_joints.hpp"
 #include "arm_io/gripper_actuator.hpp"
 #include "arm_links.hpp"
+#include "camera_source.hpp"
 #include "dynamixel/bus.hpp"
 #include "frame_receive_buffer.hpp"
 #include "fsw_app/app_config.hpp"
@@ -44,14 +46,13 @@
 #include "hal/linux_serial_port.hpp"
 #include "hal/realtime.hpp"
 #include "hal/use_case.hpp"
-#include "pico_flexx/raw_depth_pipeline.hpp"
-#include "replay_camera/pcd_replay_camera.hpp"
 #include "run_log.hpp"
 #include "run_signals.hpp"
 #include "run_summary.hpp"
 #ifdef HRP_WITH_SIM
 #include "hil_world.hpp"
 #include "sim_hal/scenario.hpp"
+#include "sim_hal/umockdev_preload.hpp"
 #endif
 
 namespace {
@@ -83,6 +84,13 @@ int main(int argc, char** argv) {
   run_signals::install();
   Options opt;
   if (auto rc = fsw_app::parse_options(argc, argv, &opt)) return *rc;
+#ifdef HRP_WITH_SIM
+  // The emulated USB camera lives in this process and needs umockdev's
+  // preload library under it: the program starts itself again with it.
+  if (opt.hal == "sim" && opt.camera == "usb" && opt.runs(fsw_app::kCameraTask)) {
+    sim_hal::umockdev_preload::ensure(argv);
+  }
+#endif
 
   fsw_app::AppConfig cfg;
   std::string error;
@@ -189,66 +197,17 @@ int main(int argc, char** argv) {
   }
 #endif
 
-  // --- Where frames come from: the HAL's camera for a camera task here,
-  // else DEPTH_FRAME messages for an estimator here.
-  std::unique_ptr<hal::DepthCamera> owned_camera;
-  hal::DepthCamera* camera = nullptr;
-  fsw_app::LcmDepthCamera* lcm_camera = nullptr;
-  // The raw path's ToF processing (the robot's), on the unit's calibration
-  // file as the simulated camera wrote it.
-  std::unique_ptr<pico_flexx::RawDepthPipeline> tof_pipeline;
-  std::string tof_calibration_path = opt.tof_calibration;
-  if (opt.runs(fsw_app::kCameraTask)) {
+  // --- Where frames come from (camera_source.hpp).
+  fsw_app::CameraSource frames;
 #ifdef HRP_WITH_SIM
-    if (world) camera = &world->camera();
-    if (world && opt.camera == "raw") {
-      if (tof_calibration_path.empty()) {
-        const char* tmp = std::getenv("TMPDIR");
-        tof_calibration_path = std::string(tmp && *tmp ? tmp : "/tmp") + "/fsw_app-tof-unit-" +
-                               std::to_string(getpid()) + ".json";
-      }
-      if (!world->camera().write_unit_calibration(tof_calibration_path, &error)) {
-        std::fprintf(stderr, "fsw_app: the simulated camera's calibration: %s\n", error.c_str());
-        return 2;
-      }
-      tof_pipeline = pico_flexx::open_raw_depth_pipeline(
-          tof_calibration_path, pico_flexx::PipelineConfig{}, clock, &error);
-      if (opt.tof_calibration.empty()) std::remove(tof_calibration_path.c_str());
-      if (!tof_pipeline) {
-        std::fprintf(stderr, "fsw_app: ToF calibration: %s\n", error.c_str());
-        return 2;
-      }
-      if (world->camera().set_raw_pipeline(tof_pipeline.get()) != hal::CameraStatus::kSuccess) {
-        std::fprintf(stderr, "fsw_app: the simulated camera refused the raw path\n");
-        return 1;
-      }
-    }
+  if (auto rc = fsw_app::open_camera_source(opt, cfg, hub, world.get(), &scenario, clock, &frames))
+    return *rc;
+#else
+  if (auto rc = fsw_app::open_camera_source(opt, cfg, hub, nullptr, nullptr, clock, &frames))
+    return *rc;
 #endif
-    if (!sim) {
-      const fsw_app::EstimatorTaskConfig defaults;
-      auto replay = std::make_unique<replay_camera::PcdReplayCamera>(
-          opt.camera_replay, clock, true,
-          static_cast<std::uint64_t>(defaults.max_width) * defaults.max_height);
-      if (!replay->load(&error)) {
-        std::fprintf(stderr, "fsw_app: %s\n", error.c_str());
-        return 2;
-      }
-      // The files that would not read are named; the others play.
-      if (!error.empty()) {
-        std::fprintf(stderr, "fsw_app: --camera-replay: %zu frames; skipped:\n%s",
-                     replay->frame_count(), error.c_str());
-      }
-      owned_camera = std::move(replay);
-      camera = owned_camera.get();
-    }
-  } else if (opt.runs(fsw_app::kEstimatorTask)) {
-    const fsw_app::EstimatorTaskConfig defaults;
-    auto from_lcm =
-        std::make_unique<fsw_app::LcmDepthCamera>(hub, defaults.max_width, defaults.max_height);
-    lcm_camera = from_lcm.get();
-    owned_camera = std::move(from_lcm);
-    camera = owned_camera.get();
-  }
+  hal::DepthCamera* camera = frames.camera();
+  fsw_app::LcmDepthCamera* lcm_camera = frames.lcm_camera();
 
   // --- The arm's drivers on the ports.
   fsw_app::ArmLinks links;
@@ -264,8 +223,14 @@ int main(int argc, char** argv) {
   std::unique_ptr<fsw_app::FramePublisher> frame_publisher;
   std::unique_ptr<fsw_app::EstimatorTask> estimator_task;
   if (camera) {
-    if (camera->initialize() != hal::CameraStatus::kSuccess ||
-        camera->set_use_case(cfg.use_case.c_str()) != hal::CameraStatus::kSuccess ||
+    const hal::CameraStatus init = camera->initialize();
+    if (init != hal::CameraStatus::kSuccess) {
+      const std::string detail = frames.failure_detail();
+      std::fprintf(stderr, "fsw_app: the camera would not initialize: %s%s%s\n",
+                   hal::to_string(init), detail.empty() ? "" : ": ", detail.c_str());
+      return 1;
+    }
+    if (camera->set_use_case(cfg.use_case.c_str()) != hal::CameraStatus::kSuccess ||
         camera->max_frame_size(&max_w, &max_h) != hal::CameraStatus::kSuccess) {
       std::fprintf(stderr, "fsw_app: the camera would not take use case %s\n",
                    cfg.use_case.c_str());
@@ -449,12 +414,26 @@ int main(int argc, char** argv) {
       } else if (f == "handrail-lost") {
         world->occlude_until(std::numeric_limits<std::int64_t>::max());
       } else if (f == "corrupt-frames") {
-        world->corrupt_next_frames(5);
+        // Over USB the frames are spoilt on the wire, where the driver
+        // drops them; otherwise the camera task refuses them.
+        if (frames.hil_usb()) {
+          frames.hil_usb()->corrupt_next_frames(5);
+        } else {
+          world->corrupt_next_frames(5);
+        }
       } else if (f == "imu-silent") {
         world->sensors().silence_imu_until(clock.now_us() + 500000);
       } else if (f == "gp-jump") {
         world->sensors().jump_gp(Eigen::Vector3d(0.0, 0.2, 0.0));
+      } else if (f == "usb-unplug") {
+        frames.hil_usb()->unplug_for(clock.now_us(), 500000);
+      } else if (f == "usb-stall") {
+        frames.hil_usb()->stall_stream();
       }
+    }
+    if (frames.hil_usb() && !frames.hil_usb()->service(clock.now_us(), &error)) {
+      std::fprintf(stderr, "\nfsw_app: the emulated camera would not plug back in: %s\n",
+                   error.c_str());
     }
 #endif
     if (opt.perch && commanded && !stopping) {
@@ -508,10 +487,7 @@ int main(int argc, char** argv) {
   if (manager) manager->stop();
   if (arm_task) arm_task->stop();
   if (camera) (void)camera->stop_capture();
-  if (tof_pipeline) {
-    summary.tof = tof_pipeline->counts();
-    summary.tof_median_us = tof_pipeline->processing_median_us();
-  }
+  frames.report(&summary);
   if (estimator_task) {
     estimator_task->stop();
     estimator_task->publish_health();

@@ -2,6 +2,8 @@
 
 #include <signal.h>
 
+#include <string>
+
 namespace fsw_app {
 
 const char* signal_name(int sig) {
@@ -26,6 +28,54 @@ double valid_pixel_share(const pico_flexx::PipelineCounts& c) {
          static_cast<double>(all);
 }
 
+// The USB path: what the driver delivered and lost, and what it recovered from.
+void print_usb(const UsbPathReport& u, std::FILE* out) {
+  const pico_flexx::UsbCounters& d = u.driver;
+  std::fprintf(out,
+               "  USB                 %llu frames delivered, %llu lost (%llu not sent, %llu "
+               "refused)%s; %llu unplugs, %llu replugs, %llu stalls, %llu clear halts, %llu "
+               "re-initialisations, %llu resets, %llu command timeouts; camera %s\n",
+               static_cast<unsigned long long>(d.frames_delivered),
+               static_cast<unsigned long long>(u.frames_lost),
+               static_cast<unsigned long long>(d.assembly.frames_missed),
+               static_cast<unsigned long long>(d.assembly.dropped()),
+               u.frames_made_by_camera >= 0
+                   ? (", of " + std::to_string(u.frames_made_by_camera) + " the camera made").c_str()
+                   : "",
+               static_cast<unsigned long long>(d.unplugs),
+               static_cast<unsigned long long>(d.replugs), static_cast<unsigned long long>(d.stalls),
+               static_cast<unsigned long long>(d.clear_halts),
+               static_cast<unsigned long long>(d.reinitialisations),
+               static_cast<unsigned long long>(d.usb_resets),
+               static_cast<unsigned long long>(d.command_timeouts), u.state.c_str());
+}
+
+void write_usb_json(const UsbPathReport& u, std::FILE* f) {
+  const pico_flexx::UsbCounters& d = u.driver;
+  std::fprintf(f,
+               ", \"frames_lost\": %llu, \"usb\": {\"frames_delivered\": %llu, \"frames_not_sent\": "
+               "%llu, \"frames_refused\": %llu, \"frames_short\": %llu, \"frames_corrupt\": %llu, "
+               "\"frames_made_by_camera\": %lld, \"unplugs\": %llu, \"replugs\": %llu, "
+               "\"stalls\": %llu, \"silences\": %llu, \"clear_halts\": %llu, "
+               "\"reinitialisations\": %llu, \"usb_resets\": %llu, \"command_timeouts\": %llu, "
+               "\"transfers_failed\": %llu, \"state\": \"%s\"}",
+               static_cast<unsigned long long>(u.frames_lost),
+               static_cast<unsigned long long>(d.frames_delivered),
+               static_cast<unsigned long long>(d.assembly.frames_missed),
+               static_cast<unsigned long long>(d.assembly.dropped()),
+               static_cast<unsigned long long>(d.assembly.frames_short),
+               static_cast<unsigned long long>(d.assembly.frames_corrupt),
+               static_cast<long long>(u.frames_made_by_camera),
+               static_cast<unsigned long long>(d.unplugs),
+               static_cast<unsigned long long>(d.replugs), static_cast<unsigned long long>(d.stalls),
+               static_cast<unsigned long long>(d.silences),
+               static_cast<unsigned long long>(d.clear_halts),
+               static_cast<unsigned long long>(d.reinitialisations),
+               static_cast<unsigned long long>(d.usb_resets),
+               static_cast<unsigned long long>(d.command_timeouts),
+               static_cast<unsigned long long>(d.transfers_failed), u.state.c_str());
+}
+
 // Which path the frames took and, on the raw path, what processing cost.
 void print_camera(const RunSummary& s, std::FILE* out) {
   if (s.camera_path.empty()) return;
@@ -42,6 +92,7 @@ void print_camera(const RunSummary& s, std::FILE* out) {
                static_cast<unsigned long long>(c.frames_dropped),
                static_cast<unsigned long long>(c.frames_mostly_invalid),
                100.0 * valid_pixel_share(c));
+  if (s.usb) print_usb(*s.usb, out);
 }
 
 void write_camera_json(const RunSummary& s, std::FILE* f) {
@@ -50,12 +101,14 @@ void write_camera_json(const RunSummary& s, std::FILE* f) {
   std::fprintf(f,
                "\"camera\": {\"path\": \"%s\", \"tof_median_us\": %lld, \"tof_frames\": %lld, "
                "\"tof_frames_dropped\": %lld, \"tof_frames_mostly_invalid\": %lld, "
-               "\"tof_valid_pixel_share\": %.4f}, ",
+               "\"tof_valid_pixel_share\": %.4f",
                s.camera_path.c_str(), static_cast<long long>(s.tof_median_us),
                s.tof ? static_cast<long long>(c.frames_in) : none,
                s.tof ? static_cast<long long>(c.frames_dropped) : none,
                s.tof ? static_cast<long long>(c.frames_mostly_invalid) : none,
                s.tof ? valid_pixel_share(c) : -1.0);
+  if (s.usb) write_usb_json(*s.usb, f);
+  std::fputs("}, ", f);
 }
 
 void print_frames(const RunSummary& s, std::FILE* out) {

@@ -17,6 +17,7 @@
 namespace hal {
 namespace detail {
 bool set_raw_standard_rate(int fd, std::uint32_t baud);  // linux_serial_termios.cpp
+bool flush_input_queue(int fd);                          // linux_serial_termios.cpp
 }  // namespace detail
 
 const char* to_string(SerialStatus status) {
@@ -183,7 +184,7 @@ SerialStatus LinuxSerialPort::read(std::uint8_t* out, std::size_t capacity, std:
 
 SerialStatus LinuxSerialPort::flush_input() {
   if (fd_ < 0) return SerialStatus::kNotOpen;
-  return ioctl(fd_, TCFLSH, TCIFLUSH) == 0 ? SerialStatus::kOk : SerialStatus::kIoError;
+  return detail::flush_input_queue(fd_) ? SerialStatus::kOk : SerialStatus::kIoError;
 }
 
 }  // namespace hal

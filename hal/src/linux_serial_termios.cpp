@@ -61,5 +61,13 @@ bool set_raw_standard_rate(int fd, std::uint32_t baud) {
   return tcsetattr(fd, TCSANOW, &t) == 0;
 }
 
+// Through glibc rather than a raw ioctl: a program running under an
+// interposing library (umockdev's preload, which the USB camera's
+// hardware-in-loop run needs) gets its own ioctl() wrapped, and that
+// wrapper fails TCFLSH on a pty; glibc's tcflush goes to the kernel.
+bool flush_input_queue(int fd) {
+  return tcflush(fd, TCIFLUSH) == 0;
+}
+
 }  // namespace detail
 }  // namespace hal

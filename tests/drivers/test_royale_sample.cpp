@@ -26,7 +26,7 @@
 #include "cmocka_cpp.hpp"
 #include "sim_hal/rendered_frame_source.hpp"
 #include "tof/calibration_io.hpp"
-#include "umockdev_preload.hpp"
+#include "sim_hal/umockdev_preload.hpp"
 
 namespace {
 
@@ -234,7 +234,7 @@ void test_api_contract(void**) {
 }  // namespace
 
 int main(int, char** argv) {
-  umockdev_preload::ensure(argv);
+  sim_hal::umockdev_preload::ensure(argv);
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_sample_against_the_emulated_camera),
                                      cmocka_unit_test(test_api_contract)};
   return cmocka_run_group_tests(tests, set_up, tear_down);

@@ -15,7 +15,7 @@
 #include "cmocka_cpp.hpp"
 #include "pico_flexx/usb_camera.hpp"
 #include "sim_hal/emulated_pico_flexx.hpp"
-#include "umockdev_preload.hpp"
+#include "sim_hal/umockdev_preload.hpp"
 
 namespace {
 
@@ -403,7 +403,7 @@ void test_lost_when_not_back(void**) {
 }  // namespace
 
 int main(int, char** argv) {
-  umockdev_preload::ensure(argv);
+  sim_hal::umockdev_preload::ensure(argv);
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_enumeration_and_identity),
       cmocka_unit_test(test_calibration_chunked),

@@ -14,7 +14,7 @@
 #include "pico_flexx/usb_depth_camera.hpp"
 #include "sim_hal/rendered_frame_source.hpp"
 #include "tof/calibration_io.hpp"
-#include "umockdev_preload.hpp"
+#include "sim_hal/umockdev_preload.hpp"
 
 namespace {
 
@@ -99,7 +99,7 @@ void test_wall_through_usb(void**) {
 }  // namespace
 
 int main(int, char** argv) {
-  umockdev_preload::ensure(argv);
+  sim_hal::umockdev_preload::ensure(argv);
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_wall_through_usb)};
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -14,6 +14,11 @@
 
 namespace fsw_app {
 
+// The longest camera serial number: the Pico Flexx protocol's serial field
+// (drivers/pico_flexx/PROTOCOL.md; fsw_app's camera set-up checks the two
+// agree).
+constexpr std::size_t kCameraSerialChars = 16;
+
 struct PortsConfig {
   std::string servo_port = "/dev/ttyUSB0";
   std::uint32_t servo_baud = 1000000;
@@ -48,6 +53,9 @@ struct AppConfig {
   // looking aft; image y is body -z, so a handrail along body z runs along
   // the image's y axis (gripper angle 0).
   Eigen::Isometry3d T_body_cam = default_T_body_cam();
+  // --hal real: the Pico Flexx with this serial number (empty: the first
+  // one found on the bus).
+  std::string camera_serial;
   estimator::DetectorConfig estimator;
   arm::PerchConfig perch;  // includes the arm geometry
   arm_io::JointServoConfig servos;

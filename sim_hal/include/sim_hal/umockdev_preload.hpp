@@ -1,9 +1,10 @@
 #pragma once
-// Tests against an emulated USB device must run under umockdev's preload
-// library, the process that owns the testbed included (it alone would not
-// see hotplug events otherwise). CTest starts them plainly: this re-executes
-// the test with the library preloaded, and with AddressSanitizer told not
-// to insist on being first in the library order.
+// A program with an emulated USB device (tests, fsw_app --camera usb) must
+// run under umockdev's preload library, the process that owns the testbed
+// included (it alone would not see hotplug events otherwise). CTest and
+// users start them plainly: this re-executes the program with the library
+// preloaded, and with AddressSanitizer told not to insist on being first in
+// the library order.
 #include <unistd.h>
 
 #include <cerrno>
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <string>
 
+namespace sim_hal {
 namespace umockdev_preload {
 
 constexpr const char* kLibrary = "libumockdev-preload.so.0";
@@ -33,3 +35,4 @@ inline void ensure(char** argv) {
 }
 
 }  // namespace umockdev_preload
+}  // namespace sim_hal
