@@ -15,8 +15,8 @@
 #include <memory>
 #include <string>
 
-#include "hal/clock.hpp"
 #include "fsw_app/usb_path_report.hpp"
+#include "hal/clock.hpp"
 #include "hil_world.hpp"
 #include "pico_flexx/usb_depth_camera.hpp"
 #include "sim_hal/emulated_pico_flexx.hpp"

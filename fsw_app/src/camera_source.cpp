@@ -33,7 +33,8 @@ std::optional<int> open_raw_path(const Options& opt, HilWorld& world, const hal:
     std::fprintf(stderr, "fsw_app: the simulated camera's calibration: %s\n", error.c_str());
     return 2;
   }
-  *pipeline = pico_flexx::open_raw_depth_pipeline(path, pico_flexx::PipelineConfig{}, clock, &error);
+  *pipeline =
+      pico_flexx::open_raw_depth_pipeline(path, pico_flexx::PipelineConfig{}, clock, &error);
   if (opt.tof_calibration.empty()) std::remove(path.c_str());
   if (!*pipeline) {
     std::fprintf(stderr, "fsw_app: ToF calibration: %s\n", error.c_str());
@@ -101,7 +102,17 @@ const pico_flexx::RawDepthPipeline* CameraSource::processing() const {
 }
 
 std::string CameraSource::failure_detail() const {
-  if (usb_driver_ != nullptr) return usb_driver_->error();
+  if (usb_driver_ != nullptr) {
+    std::string detail = usb_driver_->error();
+    if (detail.find("NOT_FOUND") != std::string::npos) {
+      detail += " (no Pico Flexx, USB 1c28:c012";
+      if (!usb_serial_.empty()) detail += " with serial " + usb_serial_;
+      detail +=
+          ", on the bus: check the cable and the device node's permissions, or play recorded "
+          "frames with --camera-replay DIR)";
+    }
+    return detail;
+  }
 #ifdef HRP_WITH_SIM
   if (hil_usb_) return hil_usb_->driver_error();
 #endif
@@ -141,6 +152,7 @@ std::optional<int> open_camera_source(const Options& opt, const AppConfig& cfg, 
       auto driver = std::make_unique<pico_flexx::UsbDepthCamera>(
           usb_camera_config(cfg), pico_flexx::PipelineConfig{}, clock);
       out->usb_driver_ = driver.get();
+      out->usb_serial_ = cfg.camera_serial;
       out->owned_ = std::move(driver);
     }
     out->camera_ = out->owned_.get();
@@ -164,7 +176,8 @@ std::optional<int> open_camera_source(const Options& opt, const AppConfig& cfg, 
 #else
   (void)world;
   (void)scenario;
-  std::fprintf(stderr, "fsw_app: this build has no simulated HAL (a robot build); use --hal real\n");
+  std::fprintf(stderr,
+               "fsw_app: this build has no simulated HAL (a robot build); use --hal real\n");
   return 2;
 #endif
 }

@@ -55,7 +55,9 @@ class CameraSource {
 
 #ifdef HRP_WITH_SIM
   // The USB path's HIL rig, for its faults; nullptr on any other path.
-  HilUsbCamera* hil_usb() const { return hil_usb_.get(); }
+  HilUsbCamera* hil_usb() const {
+    return hil_usb_.get();
+  }
 #endif
 
  private:
@@ -72,6 +74,7 @@ class CameraSource {
   std::unique_ptr<pico_flexx::RawDepthPipeline> tof_pipeline_;
   // The USB driver, on the robot (--hal real) ...
   pico_flexx::UsbDepthCamera* usb_driver_ = nullptr;
+  std::string usb_serial_;  // the one it looks for (empty: any)
 #ifdef HRP_WITH_SIM
   // ... or in the HIL rig.
   std::unique_ptr<HilUsbCamera> hil_usb_;

@@ -31,49 +31,48 @@ double valid_pixel_share(const pico_flexx::PipelineCounts& c) {
 // The USB path: what the driver delivered and lost, and what it recovered from.
 void print_usb(const UsbPathReport& u, std::FILE* out) {
   const pico_flexx::UsbCounters& d = u.driver;
-  std::fprintf(out,
-               "  USB                 %llu frames delivered, %llu lost (%llu not sent, %llu "
-               "refused)%s; %llu unplugs, %llu replugs, %llu stalls, %llu clear halts, %llu "
-               "re-initialisations, %llu resets, %llu command timeouts; camera %s\n",
-               static_cast<unsigned long long>(d.frames_delivered),
-               static_cast<unsigned long long>(u.frames_lost),
-               static_cast<unsigned long long>(d.assembly.frames_missed),
-               static_cast<unsigned long long>(d.assembly.dropped()),
-               u.frames_made_by_camera >= 0
-                   ? (", of " + std::to_string(u.frames_made_by_camera) + " the camera made").c_str()
-                   : "",
-               static_cast<unsigned long long>(d.unplugs),
-               static_cast<unsigned long long>(d.replugs), static_cast<unsigned long long>(d.stalls),
-               static_cast<unsigned long long>(d.clear_halts),
-               static_cast<unsigned long long>(d.reinitialisations),
-               static_cast<unsigned long long>(d.usb_resets),
-               static_cast<unsigned long long>(d.command_timeouts), u.state.c_str());
+  std::fprintf(
+      out,
+      "  USB                 %llu frames delivered, %llu lost (%llu not sent, %llu "
+      "refused)%s; %llu unplugs, %llu replugs, %llu stalls, %llu clear halts, %llu "
+      "re-initialisations, %llu resets, %llu command timeouts; camera %s\n",
+      static_cast<unsigned long long>(d.frames_delivered),
+      static_cast<unsigned long long>(u.frames_lost),
+      static_cast<unsigned long long>(u.frames_not_sent),
+      static_cast<unsigned long long>(u.frames_refused),
+      u.frames_made_by_camera >= 0
+          ? (", of " + std::to_string(u.frames_made_by_camera) + " the camera made").c_str()
+          : "",
+      static_cast<unsigned long long>(d.unplugs), static_cast<unsigned long long>(d.replugs),
+      static_cast<unsigned long long>(d.stalls), static_cast<unsigned long long>(d.clear_halts),
+      static_cast<unsigned long long>(d.reinitialisations),
+      static_cast<unsigned long long>(d.usb_resets),
+      static_cast<unsigned long long>(d.command_timeouts), u.state.c_str());
 }
 
 void write_usb_json(const UsbPathReport& u, std::FILE* f) {
   const pico_flexx::UsbCounters& d = u.driver;
-  std::fprintf(f,
-               ", \"frames_lost\": %llu, \"usb\": {\"frames_delivered\": %llu, \"frames_not_sent\": "
-               "%llu, \"frames_refused\": %llu, \"frames_short\": %llu, \"frames_corrupt\": %llu, "
-               "\"frames_made_by_camera\": %lld, \"unplugs\": %llu, \"replugs\": %llu, "
-               "\"stalls\": %llu, \"silences\": %llu, \"clear_halts\": %llu, "
-               "\"reinitialisations\": %llu, \"usb_resets\": %llu, \"command_timeouts\": %llu, "
-               "\"transfers_failed\": %llu, \"state\": \"%s\"}",
-               static_cast<unsigned long long>(u.frames_lost),
-               static_cast<unsigned long long>(d.frames_delivered),
-               static_cast<unsigned long long>(d.assembly.frames_missed),
-               static_cast<unsigned long long>(d.assembly.dropped()),
-               static_cast<unsigned long long>(d.assembly.frames_short),
-               static_cast<unsigned long long>(d.assembly.frames_corrupt),
-               static_cast<long long>(u.frames_made_by_camera),
-               static_cast<unsigned long long>(d.unplugs),
-               static_cast<unsigned long long>(d.replugs), static_cast<unsigned long long>(d.stalls),
-               static_cast<unsigned long long>(d.silences),
-               static_cast<unsigned long long>(d.clear_halts),
-               static_cast<unsigned long long>(d.reinitialisations),
-               static_cast<unsigned long long>(d.usb_resets),
-               static_cast<unsigned long long>(d.command_timeouts),
-               static_cast<unsigned long long>(d.transfers_failed), u.state.c_str());
+  std::fprintf(
+      f,
+      ", \"frames_lost\": %llu, \"usb\": {\"frames_delivered\": %llu, \"frames_not_sent\": "
+      "%llu, \"frames_refused\": %llu, \"frames_short\": %llu, \"frames_corrupt\": %llu, "
+      "\"frames_made_by_camera\": %lld, \"unplugs\": %llu, \"replugs\": %llu, "
+      "\"stalls\": %llu, \"silences\": %llu, \"clear_halts\": %llu, "
+      "\"reinitialisations\": %llu, \"usb_resets\": %llu, \"command_timeouts\": %llu, "
+      "\"transfers_failed\": %llu, \"state\": \"%s\"}",
+      static_cast<unsigned long long>(u.frames_lost),
+      static_cast<unsigned long long>(d.frames_delivered),
+      static_cast<unsigned long long>(u.frames_not_sent),
+      static_cast<unsigned long long>(u.frames_refused),
+      static_cast<unsigned long long>(d.assembly.frames_short),
+      static_cast<unsigned long long>(d.assembly.frames_corrupt),
+      static_cast<long long>(u.frames_made_by_camera), static_cast<unsigned long long>(d.unplugs),
+      static_cast<unsigned long long>(d.replugs), static_cast<unsigned long long>(d.stalls),
+      static_cast<unsigned long long>(d.silences), static_cast<unsigned long long>(d.clear_halts),
+      static_cast<unsigned long long>(d.reinitialisations),
+      static_cast<unsigned long long>(d.usb_resets),
+      static_cast<unsigned long long>(d.command_timeouts),
+      static_cast<unsigned long long>(d.transfers_failed), u.state.c_str());
 }
 
 // Which path the frames took and, on the raw path, what processing cost.

@@ -25,8 +25,8 @@
 #include "allocation_counter.hpp"
 #include "cmocka_cpp.hpp"
 #include "sim_hal/rendered_frame_source.hpp"
-#include "tof/calibration_io.hpp"
 #include "sim_hal/umockdev_preload.hpp"
+#include "tof/calibration_io.hpp"
 
 namespace {
 

@@ -13,8 +13,8 @@
 #include "cmocka_cpp.hpp"
 #include "pico_flexx/usb_depth_camera.hpp"
 #include "sim_hal/rendered_frame_source.hpp"
-#include "tof/calibration_io.hpp"
 #include "sim_hal/umockdev_preload.hpp"
+#include "tof/calibration_io.hpp"
 
 namespace {
 

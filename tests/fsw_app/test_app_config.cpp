@@ -29,6 +29,17 @@ void test_shipped_configuration_loads(void**) {
   assert_near(c.T_body_cam.linear().col(2).x(), -1.0, 1e-12);
 }
 
+void test_camera_serial_is_read(void**) {
+  // --hal real looks for this camera; none given: the first one found.
+  fsw_app::AppConfig c;
+  std::string error;
+  assert_true(fsw_app::parse_app_config("{}", "cfg.json", &c, &error));
+  assert_true(c.camera_serial.empty());
+  assert_true(fsw_app::parse_app_config("{\"camera\": {\"serial\": \"0005-1234-0042\"}}",
+                                        "cfg.json", &c, &error));
+  assert_string_equal(c.camera_serial.c_str(), "0005-1234-0042");
+}
+
 // Parses `text`; expects failure with every fragment in the message.
 void expect_error(const char* text, std::initializer_list<const char*> fragments) {
   fsw_app::AppConfig c;
@@ -56,6 +67,9 @@ void test_mistakes_name_file_line_and_key(void**) {
   expect_error("{\"arm\": {\"base_m\": [0, 0]}}", {"arm.base_m", "array of 3"});
   expect_error("{\"servos\": {\"tilt_id\": 2, \"pan_id\": 2}}", {"servos.pan_id", "different"});
   expect_error("{\"ports\": {\"servo_baud\": 1.5e7}}", {"ports.servo_baud"});
+  expect_error("{\"camera\": {\"serial\": \"0005-1234-0042-99999\"}}",
+               {"camera.serial", "16 characters"});
+  expect_error("{\"camera\": {\"serial\": \"\"}}", {"camera.serial", "non-empty"});
   expect_error("{\"perch\": {\"max_grasp_attempts\": 2.5}}", {"perch.max_grasp_attempts", "whole"});
   expect_error("{\"estimator\": {\"plane_iterations\": -1}}", {"cfg.json:1:", "plane_iterations"});
   // Found from outside: a hexadecimal number was read as 20, an impossible
@@ -95,6 +109,7 @@ void test_a_failed_load_changes_nothing(void**) {
 int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_shipped_configuration_loads),
+      cmocka_unit_test(test_camera_serial_is_read),
       cmocka_unit_test(test_mistakes_name_file_line_and_key),
       cmocka_unit_test(test_a_failed_load_changes_nothing),
   };

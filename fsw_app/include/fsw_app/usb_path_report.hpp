@@ -11,12 +11,15 @@ namespace fsw_app {
 struct UsbPathReport {
   pico_flexx::UsbCounters driver;
   // Frames the camera made that never reached the processing, in the
-  // driver's own account: sequence gaps (made, not sent: no transfer was
-  // waiting) and frames it refused (short, corrupt, out of order). Frames
-  // not made while the cable was out are not counted: the camera was not
-  // streaming then.
+  // driver's own account: the gaps in the sequence of frames handed on,
+  // which hold the frames the camera made and could not send (no transfer
+  // was waiting) and the frames the driver refused (short, corrupt, out of
+  // order). Frames not made while the cable was out are not counted (the
+  // camera was not streaming), nor a refused frame no good frame followed.
   std::uint64_t frames_lost = 0;
-  std::string state;  // the driver's camera state at the end (STREAMING, LOST, ...)
+  std::uint64_t frames_refused = 0;   // of frames_lost
+  std::uint64_t frames_not_sent = 0;  // of frames_lost
+  std::string state;                  // the driver's camera state at the end (STREAMING, LOST, ...)
   // The emulated camera's own count of frames it made (sent and dropped
   // for want of a transfer); -1 for a real camera.
   std::int64_t frames_made_by_camera = -1;
@@ -25,7 +28,10 @@ struct UsbPathReport {
 inline UsbPathReport usb_path_report(const pico_flexx::UsbCamera& usb) {
   UsbPathReport r;
   r.driver = usb.counters();
-  r.frames_lost = r.driver.assembly.frames_missed + r.driver.assembly.dropped();
+  const pico_flexx::AssemblerCounts& a = r.driver.assembly;
+  r.frames_lost = a.frames_missed;
+  r.frames_refused = a.dropped();
+  r.frames_not_sent = a.frames_missed > a.dropped() ? a.frames_missed - a.dropped() : 0;
   r.state = pico_flexx::to_string(usb.state());
   return r;
 }

@@ -24,8 +24,10 @@ struct AssemblerCounts {
   std::uint64_t frames_bad_header = 0;    // a transfer that should start a frame and does not
   std::uint64_t frames_overrun = 0;       // more bytes than the header said, no frame end
   std::uint64_t frames_out_of_order = 0;  // sequence not after the last one handed on
-  std::uint64_t frames_missed = 0;        // sequence gaps: frames the camera never sent
-  std::uint64_t bytes_discarded = 0;      // bytes of dropped frames and bad transfers
+  // Sequence gaps between frames handed on: frames the camera never sent,
+  // and the frames dropped above (a dropped frame's sequence is not taken).
+  std::uint64_t frames_missed = 0;
+  std::uint64_t bytes_discarded = 0;  // bytes of dropped frames and bad transfers
   ParseStatus last_header_error = ParseStatus::kOk;
   std::uint64_t dropped() const {
     return frames_short + frames_corrupt + frames_bad_header + frames_overrun + frames_out_of_order;
