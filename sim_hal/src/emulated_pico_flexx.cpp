@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <thread>
 
 #include "emulated_pico_flexx_impl.hpp"
 
@@ -49,6 +50,15 @@ constexpr const char* kDescriptorsHex =
     "0200";
 
 constexpr int kBusNumber = 1;
+// How long a reap with nothing ready is held before "nothing yet" is
+// answered. The kernel's poll() on a usbdevfs node blocks the host's event
+// loop until a URB completes; umockdev does not emulate poll() (the node is
+// always ready), so libusb would ask again at once, and the loop and this
+// thread spun at over half a core each in a perch. Held for 1 ms, the host
+// waits much as it would on the kernel, frames are still made within a
+// millisecond of being due (at most 45 fps: 22 ms apart), and commands
+// gain at most a millisecond.
+constexpr auto kIdleReapHold = std::chrono::microseconds(1000);
 
 std::string device_record(int device_number, const std::string& serial) {
   char node[64];
@@ -100,8 +110,8 @@ gboolean handle_ioctl(UMockdevIoctlBase*, UMockdevIoctlClient* client, gpointer 
   auto* plug = static_cast<PlugContext*>(user_data);
   EmulatedPicoFlexx::Impl& d = *plug->impl;
   const unsigned long request = umockdev_ioctl_client_get_request(client);
-  std::lock_guard<std::mutex> lock(d.mutex);
-  const bool present = d.plugged && plug->generation == d.generation;
+  std::unique_lock<std::mutex> lock(d.mutex);
+  bool present = d.plugged && plug->generation == d.generation;
 
   if (request == USBDEVFS_GET_CAPABILITIES) {
     if (!present) return complete(client, -1, ENODEV), TRUE;
@@ -115,6 +125,16 @@ gboolean handle_ioctl(UMockdevIoctlBase*, UMockdevIoctlClient* client, gpointer 
     // After an unplug the host still reaps what it had in flight, as shut
     // down; then the node answers ENODEV.
     if (present) d.advance(d.clock->now_us());
+    if (present && d.done_urbs.empty()) {
+      // Unlocked meanwhile, so that faults switched from other threads go
+      // on; the host's other requests queue behind this one on the
+      // worker thread, as they do anyway.
+      lock.unlock();
+      std::this_thread::sleep_for(kIdleReapHold);
+      lock.lock();
+      present = d.plugged && plug->generation == d.generation;
+      if (present) d.advance(d.clock->now_us());
+    }
     if (d.done_urbs.empty()) {
       complete(client, -1, present ? EAGAIN : ENODEV);
       return TRUE;
