@@ -4,8 +4,8 @@
 //
 //   fsw_app --hal sim --scenario FILE [--perch] ...   hardware-in-loop on the simulated HAL
 //   fsw_app --hal sim --camera usb ...                the same through the USB driver
-//   fsw_app --hal real [--camera-replay DIR] ...      robot ports, the Pico Flexx or recorded
-//   frames fsw_app --frames-from-log RUN.lcmlog ...          a recorded run into the estimator
+//   fsw_app --hal real [--camera-replay DIR] ...      robot ports; the Pico Flexx or frames
+//   fsw_app --frames-from-log RUN.lcmlog ...          a recorded run into the estimator
 //
 // With --perch it commands PERCH, shows progress, and ends with a summary
 // (and exit status 0 only for a perch within 1 cm of the bar).
