@@ -74,8 +74,8 @@ std::optional<int> check_combination(Options* o, bool tasks_given) {
   }
   if (!o->tof_calibration.empty() && o->camera != "raw") {
     return usage_error(
-        "--tof-calibration is the in-process raw path's file; over USB (--camera usb) the "
-        "calibration is read from the camera");
+        "--tof-calibration is the raw path's calibration file (--camera raw): the depth "
+        "renderer needs none, and over USB (--camera usb) it is read from the camera");
   }
   for (const auto& fault : o->faults) {
     const bool usb_fault = fault.first == "usb-unplug" || fault.first == "usb-stall";
