@@ -20,17 +20,40 @@ HilUsbCamera::HilUsbCamera(const sim_hal::Scenario& scenario, HilWorld& world,
 HilUsbCamera::~HilUsbCamera() {
   // The driver lets go of the device before the device goes.
   if (driver_) (void)driver_->stop_capture();
+  if (royale_) (void)royale_->stop_capture();
   driver_.reset();
+  royale_.reset();
   device_.reset();
 }
 
-bool HilUsbCamera::plug_in(const pico_flexx::UsbCameraConfig& usb, std::string* error) {
+bool HilUsbCamera::plug_in(const pico_flexx::UsbCameraConfig& usb, bool through_royale,
+                           std::string* error) {
   sim_hal::EmulatedCameraConfig device_config;
   device_config.calibration = tof::calibration_to_json(world_.camera().unit_calibration());
   device_ = sim_hal::EmulatedPicoFlexx::create(device_config, this, clock_, error);
   if (!device_) return false;
-  driver_ = std::make_unique<pico_flexx::UsbDepthCamera>(usb, pico_flexx::PipelineConfig{}, clock_);
+  if (through_royale) {
+    pico_flexx::RoyaleCameraConfig royale;
+    royale.serial = usb.serial;
+    royale_ = std::make_unique<pico_flexx::RoyaleDepthCamera>(royale, clock_);
+  } else {
+    driver_ =
+        std::make_unique<pico_flexx::UsbDepthCamera>(usb, pico_flexx::PipelineConfig{}, clock_);
+  }
   return true;
+}
+
+hal::DepthCamera& HilUsbCamera::camera() {
+  if (royale_) return *royale_;
+  return *driver_;
+}
+
+const pico_flexx::RawDepthPipeline* HilUsbCamera::pipeline() const {
+  return driver_ ? driver_->pipeline() : nullptr;
+}
+
+const std::string& HilUsbCamera::driver_error() const {
+  return royale_ ? royale_->error() : driver_->error();
 }
 
 void HilUsbCamera::fill(std::uint64_t frame_index, const hal::UseCase& use_case,
@@ -54,11 +77,23 @@ bool HilUsbCamera::service(std::int64_t now_us, std::string* error) {
   return device_->replug(error);
 }
 
+namespace {
+std::int64_t frames_made(const sim_hal::EmulatorCounts& device) {
+  return static_cast<std::int64_t>(device.frames_sent + device.frames_dropped_no_transfer);
+}
+}  // namespace
+
 UsbPathReport HilUsbCamera::report() const {
-  UsbPathReport r = usb_path_report(driver_->usb());
-  const sim_hal::EmulatorCounts device = device_->counts();
-  r.frames_made_by_camera =
-      static_cast<std::int64_t>(device.frames_sent + device.frames_dropped_no_transfer);
+  UsbPathReport r;
+  if (driver_) r = usb_path_report(driver_->usb());
+  r.frames_made_by_camera = frames_made(device_->counts());
+  return r;
+}
+
+RoyalePathReport HilUsbCamera::royale_report() const {
+  RoyalePathReport r;
+  if (royale_) r = royale_path_report(*royale_);
+  r.frames_made_by_camera = frames_made(device_->counts());
   return r;
 }
 

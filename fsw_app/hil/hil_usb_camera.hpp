@@ -15,9 +15,11 @@
 #include <memory>
 #include <string>
 
+#include "fsw_app/royale_path_report.hpp"
 #include "fsw_app/usb_path_report.hpp"
 #include "hal/clock.hpp"
 #include "hil_world.hpp"
+#include "pico_flexx/royale_depth_camera.hpp"
 #include "pico_flexx/usb_depth_camera.hpp"
 #include "sim_hal/emulated_pico_flexx.hpp"
 #include "sim_hal/rendered_frame_source.hpp"
@@ -36,13 +38,17 @@ class HilUsbCamera final : private sim_hal::RawFrameSource {
   HilUsbCamera& operator=(const HilUsbCamera&) = delete;
 
   // Plugs the emulated camera in, carrying the world camera's unit
-  // calibration as its calibration file, and builds the driver on `usb`.
-  // False with *error saying why (not under the preload library, ...).
-  bool plug_in(const pico_flexx::UsbCameraConfig& usb, std::string* error);
+  // calibration as its calibration file, and builds the driver on `usb`;
+  // or, `through_royale`, hal::DepthCamera on the royale API (the
+  // project's royale, on the same driver inside; `usb.serial` picks the
+  // camera). False with *error saying why (not under the preload library,
+  // ...).
+  bool plug_in(const pico_flexx::UsbCameraConfig& usb, bool through_royale, std::string* error);
 
-  hal::DepthCamera& camera() { return *driver_; }
-  const pico_flexx::RawDepthPipeline* pipeline() const { return driver_->pipeline(); }
-  const std::string& driver_error() const { return driver_->error(); }
+  hal::DepthCamera& camera();
+  // The driver's ToF processing; nullptr through royale (royale keeps it).
+  const pico_flexx::RawDepthPipeline* pipeline() const;
+  const std::string& driver_error() const;
 
   // Faults. The cable out for `out_us`, then back in (replugged by
   // service()); the stream endpoint halted (a clear halt lifts it); the
@@ -54,7 +60,11 @@ class HilUsbCamera final : private sim_hal::RawFrameSource {
   // in when it is due. False (with *error) when the replug failed.
   bool service(std::int64_t now_us, std::string* error);
 
+  // The driver's account (the USB path), or, through royale, what royale
+  // delivered with the camera's own count of frames made.
   UsbPathReport report() const;
+  RoyalePathReport royale_report() const;
+  bool through_royale() const { return royale_ != nullptr; }
 
  private:
   // The emulated camera's frames: the world from the flyer's true pose, or
@@ -70,6 +80,7 @@ class HilUsbCamera final : private sim_hal::RawFrameSource {
   sim_hal::RenderedFrameSource covered_frames_;
   std::unique_ptr<sim_hal::EmulatedPicoFlexx> device_;
   std::unique_ptr<pico_flexx::UsbDepthCamera> driver_;
+  std::unique_ptr<pico_flexx::RoyaleDepthCamera> royale_;
   std::int64_t replug_at_us_ = -1;  // -1: plugged in
 };
 

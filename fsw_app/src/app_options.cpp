@@ -64,13 +64,24 @@ std::optional<int> check_combination(Options* o, bool tasks_given) {
   if (!o->faults.empty() && !o->needs_sim_world()) {
     return usage_error("--fault needs --hal sim with the camera or arm task in this process");
   }
-  if (o->camera != "raw" && o->camera != "depth" && o->camera != "usb") {
-    return usage_error("--camera is raw, depth or usb");
+  if (o->camera != "raw" && o->camera != "depth" && o->camera != "usb" && o->camera != "royale") {
+    return usage_error("--camera is raw, depth, usb or royale");
   }
-  if (o->hal == "real" && (o->camera_given || !o->tof_calibration.empty())) {
+  if (o->hal == "real" && o->camera_given && o->camera != "usb" && o->camera != "royale") {
     return usage_error(
-        "--camera and --tof-calibration choose the simulated camera's path (--hal sim); with "
-        "--hal real the camera task reads the Pico Flexx over USB, or plays --camera-replay");
+        "--camera " + o->camera +
+        " is a simulated camera's path (--hal sim); with --hal real the camera task reads the "
+        "Pico Flexx with the project's USB driver (--camera usb, the default) or through the "
+        "royale API (--camera royale), or plays --camera-replay");
+  }
+  if (o->hal == "real" && !o->tof_calibration.empty()) {
+    return usage_error(
+        "--tof-calibration is the simulated camera's (--hal sim --camera raw): a real Pico "
+        "Flexx carries its own calibration");
+  }
+  if (o->hal == "real" && o->camera_given && !o->camera_replay.empty()) {
+    return usage_error(
+        "--camera-replay plays recorded frames in place of the camera: drop --camera");
   }
   if (!o->tof_calibration.empty() && o->camera != "raw") {
     return usage_error(
@@ -79,10 +90,10 @@ std::optional<int> check_combination(Options* o, bool tasks_given) {
   }
   for (const auto& fault : o->faults) {
     const bool usb_fault = fault.first == "usb-unplug" || fault.first == "usb-stall";
-    if (usb_fault && !(o->hal == "sim" && o->camera == "usb" && o->runs(kCameraTask))) {
+    if (usb_fault && !o->emulated_usb_camera()) {
       return usage_error("--fault " + fault.first +
-                         " acts on the emulated camera: it needs --hal sim --camera usb with the "
-                         "camera task");
+                         " acts on the emulated camera: it needs --hal sim --camera usb (or "
+                         "royale) with the camera task");
     }
   }
   return std::nullopt;
@@ -130,13 +141,19 @@ void print_usage(std::FILE* out) {
                "                        occlude (1 s), corrupt-frames (5 frames), imu-silent\n"
                "                        (0.5 s), gp-jump (the GP pose 20 cm off from then on),\n"
                "                        handrail-lost (the camera sees nothing from then on);\n"
-               "                        with --camera usb also usb-unplug (the cable out for\n"
-               "                        0.5 s) and usb-stall (the stream endpoint halted)\n"
-               "  --camera raw|depth|usb sim: the frames' path (default raw): the raw renderer's\n"
+               "                        with --camera usb or royale also usb-unplug (the\n"
+               "                        cable out for 0.5 s) and usb-stall (the stream\n"
+               "                        endpoint halted)\n"
+               "  --camera raw|depth|usb|royale\n"
+               "                        sim: the frames' path (default raw): the raw renderer's\n"
                "                        phase frames through the robot's ToF processing; the\n"
-               "                        depth renderer's frames; or usb: the raw frames from\n"
-               "                        an emulated Pico Flexx (umockdev) read by the robot's\n"
-               "                        USB driver through libusb, then the ToF processing\n"
+               "                        depth renderer's frames; usb: the raw frames from an\n"
+               "                        emulated Pico Flexx (umockdev) read by the robot's USB\n"
+               "                        driver through libusb, then the ToF processing; royale:\n"
+               "                        the same camera through the royale API.\n"
+               "                        real: usb (default), the project's driver, or royale,\n"
+               "                        the royale API (the vendor's SDK in a build configured\n"
+               "                        with HRP_ROYALE_SDK_DIR, else the project's)\n"
                "  --tof-calibration FILE sim, raw path: where the simulated unit writes its\n"
                "                        calibration file, which the processing then reads\n"
                "                        (default: a temporary file, removed at exit)\n"

@@ -38,8 +38,9 @@ struct Options {
   std::string arm_port, gripper_port, camera_replay, handrail;
   bool quiet = false;
   // sim: the camera's path to the estimator, "raw" (raw phase frames through
-  // the robot's ToF processing), "depth" (the depth renderer) or "usb" (the
-  // emulated Pico Flexx read by the USB driver); and where
+  // the robot's ToF processing), "depth" (the depth renderer), "usb" (the
+  // emulated Pico Flexx read by the USB driver) or "royale" (the same through
+  // the royale API); real: "usb" or "royale"; and where
   // the simulated unit writes its calibration file for the processing to
   // read (empty: a file of this process's in the temporary directory).
   std::string camera = "raw";
@@ -52,12 +53,17 @@ struct Options {
   // The simulated world (flyer, rendered camera, devices on ptys) is built
   // when a task here needs the simulated HAL's camera or devices.
   bool needs_sim_world() const { return hal == "sim" && (runs(kCameraTask) || runs(kArmTask)); }
-  // What the summary names as the frames' path: "raw", "depth", "usb", "replay",
-  // or "" when no camera task runs here.
+  // What the summary names as the frames' path: "raw", "depth", "usb",
+  // "royale", "replay", or "" when no camera task runs here.
   std::string camera_path() const {
     if (!runs(kCameraTask)) return "";
     if (hal == "sim") return camera;
-    return camera_replay.empty() ? "usb" : "replay";
+    if (!camera_replay.empty()) return "replay";
+    return camera == "royale" ? "royale" : "usb";
+  }
+  // The emulated camera (umockdev, in this process) is on the frames' path.
+  bool emulated_usb_camera() const {
+    return hal == "sim" && runs(kCameraTask) && (camera == "usb" || camera == "royale");
   }
 };
 

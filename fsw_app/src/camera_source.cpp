@@ -102,6 +102,10 @@ const pico_flexx::RawDepthPipeline* CameraSource::processing() const {
 }
 
 std::string CameraSource::failure_detail() const {
+  if (royale_ != nullptr) {
+    return royale_->error() + " (the royale API on this build: " HRP_ROYALE_API_NAME
+                              "; or play recorded frames with --camera-replay DIR)";
+  }
   if (usb_driver_ != nullptr) {
     std::string detail = usb_driver_->error();
     if (detail.find("NOT_FOUND") != std::string::npos) {
@@ -127,9 +131,26 @@ void CameraSource::report(RunSummary* summary) const {
   if (usb_driver_ != nullptr) {
     summary->usb = usb_path_report(usb_driver_->usb());
   }
+  if (royale_ != nullptr) summary->royale = royale_path_report(*royale_);
 #ifdef HRP_WITH_SIM
-  if (hil_usb_) summary->usb = hil_usb_->report();
+  if (hil_usb_) {
+    if (hil_usb_->through_royale()) {
+      summary->royale = hil_usb_->royale_report();
+    } else {
+      summary->usb = hil_usb_->report();
+    }
+  }
 #endif
+}
+
+hal::CameraStatus CameraSource::configure_after_use_case() {
+  bool through_royale = royale_ != nullptr;
+#ifdef HRP_WITH_SIM
+  through_royale = through_royale || (hil_usb_ && hil_usb_->through_royale());
+#endif
+  if (!through_royale || camera_ == nullptr) return hal::CameraStatus::kSuccess;
+  // The automatic exposure, as on the USB path (usb_camera_config).
+  return camera_->set_exposure_mode(hal::ExposureMode::kAutomatic);
 }
 
 std::optional<int> open_camera_source(const Options& opt, const AppConfig& cfg, LcmHub& hub,
@@ -148,6 +169,12 @@ std::optional<int> open_camera_source(const Options& opt, const AppConfig& cfg, 
   if (opt.hal == "real") {
     if (!opt.camera_replay.empty()) {
       if (auto rc = open_replay(opt, clock, &out->owned_)) return rc;
+    } else if (opt.camera == "royale") {
+      pico_flexx::RoyaleCameraConfig royale;
+      royale.serial = cfg.camera_serial;
+      auto camera = std::make_unique<pico_flexx::RoyaleDepthCamera>(royale, clock);
+      out->royale_ = camera.get();
+      out->owned_ = std::move(camera);
     } else {
       auto driver = std::make_unique<pico_flexx::UsbDepthCamera>(
           usb_camera_config(cfg), pico_flexx::PipelineConfig{}, clock);
@@ -160,10 +187,10 @@ std::optional<int> open_camera_source(const Options& opt, const AppConfig& cfg, 
   }
 #ifdef HRP_WITH_SIM
   if (world == nullptr || scenario == nullptr) return 1;  // needs_sim_world() said otherwise
-  if (opt.camera == "usb") {
+  if (opt.camera == "usb" || opt.camera == "royale") {
     out->hil_usb_ = std::make_unique<HilUsbCamera>(*scenario, *world, clock, scenario->seed);
     std::string error;
-    if (!out->hil_usb_->plug_in(usb_camera_config(cfg), &error)) {
+    if (!out->hil_usb_->plug_in(usb_camera_config(cfg), opt.camera == "royale", &error)) {
       std::fprintf(stderr, "fsw_app: the emulated Pico Flexx: %s\n", error.c_str());
       return 1;
     }

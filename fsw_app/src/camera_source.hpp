@@ -5,8 +5,12 @@
 //   --hal sim, --camera depth  the simulated camera's depth renderer
 //   --hal sim, --camera usb    the emulated Pico Flexx on umockdev, read by the
 //                              robot's USB driver through real libusb
+//   --hal sim, --camera royale the same emulated camera through the royale API
+//                              (the project's royale, on the same driver)
 //   --hal real                 the Pico Flexx driver (first camera found, or
-//                              the configuration's serial number), or
+//                              the configuration's serial number), or with
+//                              --camera royale the royale API (the vendor's
+//                              SDK where the build has it), or
 //                              --camera-replay's recorded frames
 //   no camera task here        DEPTH_FRAME messages, for an estimator task
 #include <cstdint>
@@ -21,6 +25,7 @@
 #include "hal/clock.hpp"
 #include "hal/depth_camera.hpp"
 #include "pico_flexx/raw_depth_pipeline.hpp"
+#include "pico_flexx/royale_depth_camera.hpp"
 #include "pico_flexx/usb_depth_camera.hpp"
 #include "run_summary.hpp"
 #ifdef HRP_WITH_SIM
@@ -50,8 +55,13 @@ class CameraSource {
   // its status (the USB driver does); empty otherwise.
   std::string failure_detail() const;
   // The camera's share of the run's summary: the ToF processing's figures
-  // on the raw and USB paths, the driver's counts on the USB path.
+  // on the raw and USB paths, the driver's counts on the USB path, royale's
+  // on the royale path.
   void report(RunSummary* summary) const;
+  // Settings made once the camera is initialised and its use case set:
+  // through royale, the camera's automatic exposure (the USB driver takes
+  // it from its configuration).
+  hal::CameraStatus configure_after_use_case();
 
 #ifdef HRP_WITH_SIM
   // The USB path's HIL rig, for its faults; nullptr on any other path.
@@ -75,6 +85,8 @@ class CameraSource {
   // The USB driver, on the robot (--hal real) ...
   pico_flexx::UsbDepthCamera* usb_driver_ = nullptr;
   std::string usb_serial_;  // the one it looks for (empty: any)
+  // ... or the royale API on the robot.
+  pico_flexx::RoyaleDepthCamera* royale_ = nullptr;
 #ifdef HRP_WITH_SIM
   // ... or in the HIL rig.
   std::unique_ptr<HilUsbCamera> hil_usb_;

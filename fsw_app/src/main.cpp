@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
 #ifdef HRP_WITH_SIM
   // The emulated USB camera lives in this process and needs umockdev's
   // preload library under it: the program starts itself again with it.
-  if (opt.hal == "sim" && opt.camera == "usb" && opt.runs(fsw_app::kCameraTask)) {
+  if (opt.emulated_usb_camera()) {
     sim_hal::umockdev_preload::ensure(argv);
   }
 #endif
@@ -234,6 +234,12 @@ int main(int argc, char** argv) {
         camera->max_frame_size(&max_w, &max_h) != hal::CameraStatus::kSuccess) {
       std::fprintf(stderr, "fsw_app: the camera would not take use case %s\n",
                    cfg.use_case.c_str());
+      return 1;
+    }
+    const hal::CameraStatus configured = frames.configure_after_use_case();
+    if (configured != hal::CameraStatus::kSuccess) {
+      std::fprintf(stderr, "fsw_app: the camera would not take automatic exposure: %s\n",
+                   hal::to_string(configured));
       return 1;
     }
     ring = std::make_unique<fsw_app::FrameRing>(3, max_w, max_h);

@@ -75,23 +75,52 @@ void write_usb_json(const UsbPathReport& u, std::FILE* f) {
       static_cast<unsigned long long>(d.transfers_failed), u.state.c_str());
 }
 
+// The camera through the royale API: what royale handed on.
+void print_royale(const RoyalePathReport& r, std::FILE* out) {
+  std::fprintf(
+      out,
+      "  royale              %llu frames delivered, %llu malformed, %llu before a "
+      "listener%s; capture times %s\n",
+      static_cast<unsigned long long>(r.frames.delivered),
+      static_cast<unsigned long long>(r.frames.malformed),
+      static_cast<unsigned long long>(r.frames.unattended),
+      r.frames_made_by_camera >= 0
+          ? (", of " + std::to_string(r.frames_made_by_camera) + " the camera made").c_str()
+          : "",
+      r.capture_clock == "SAME"     ? "on this host's clock"
+      : r.capture_clock == "MAPPED" ? "mapped from the camera's clock"
+                                    : "unknown (no frame)");
+}
+
+void write_royale_json(const RoyalePathReport& r, std::FILE* f) {
+  std::fprintf(f,
+               ", \"royale\": {\"frames_delivered\": %llu, \"frames_malformed\": %llu, "
+               "\"frames_unattended\": %llu, \"frames_made_by_camera\": %lld, "
+               "\"capture_clock\": \"%s\"}",
+               static_cast<unsigned long long>(r.frames.delivered),
+               static_cast<unsigned long long>(r.frames.malformed),
+               static_cast<unsigned long long>(r.frames.unattended),
+               static_cast<long long>(r.frames_made_by_camera), r.capture_clock.c_str());
+}
+
 // Which path the frames took and, on the raw path, what processing cost.
 void print_camera(const RunSummary& s, std::FILE* out) {
   if (s.camera_path.empty()) return;
   if (!s.tof) {
     std::fprintf(out, "  camera path         %s\n", s.camera_path.c_str());
-    return;
+  } else {
+    const pico_flexx::PipelineCounts& c = *s.tof;
+    std::fprintf(out,
+                 "  camera path         %s: ToF processing median %.2f ms over %llu frames, %llu "
+                 "dropped, %llu mostly invalid, %.1f %% of pixels valid\n",
+                 s.camera_path.c_str(), 1e-3 * static_cast<double>(s.tof_median_us),
+                 static_cast<unsigned long long>(c.frames_in),
+                 static_cast<unsigned long long>(c.frames_dropped),
+                 static_cast<unsigned long long>(c.frames_mostly_invalid),
+                 100.0 * valid_pixel_share(c));
   }
-  const pico_flexx::PipelineCounts& c = *s.tof;
-  std::fprintf(out,
-               "  camera path         %s: ToF processing median %.2f ms over %llu frames, %llu "
-               "dropped, %llu mostly invalid, %.1f %% of pixels valid\n",
-               s.camera_path.c_str(), 1e-3 * static_cast<double>(s.tof_median_us),
-               static_cast<unsigned long long>(c.frames_in),
-               static_cast<unsigned long long>(c.frames_dropped),
-               static_cast<unsigned long long>(c.frames_mostly_invalid),
-               100.0 * valid_pixel_share(c));
   if (s.usb) print_usb(*s.usb, out);
+  if (s.royale) print_royale(*s.royale, out);
 }
 
 void write_camera_json(const RunSummary& s, std::FILE* f) {
@@ -107,6 +136,7 @@ void write_camera_json(const RunSummary& s, std::FILE* f) {
                s.tof ? static_cast<long long>(c.frames_mostly_invalid) : none,
                s.tof ? valid_pixel_share(c) : -1.0);
   if (s.usb) write_usb_json(*s.usb, f);
+  if (s.royale) write_royale_json(*s.royale, f);
   std::fputs("}, ", f);
 }
 

@@ -14,6 +14,7 @@
 #include "fsw_app/localization_task.hpp"
 #include "fsw_app/log_player.hpp"
 #include "fsw_app/periodic_thread.hpp"
+#include "fsw_app/royale_path_report.hpp"
 #include "fsw_app/usb_path_report.hpp"
 #include "hrp/arm_state_t.hpp"
 #include "hrp/estimator_health_t.hpp"
@@ -50,12 +51,13 @@ struct RunSummary {
   std::optional<dynamixel::BusCounters> servo_bus;
   std::optional<std::uint32_t> gripper_retries;
   double camera_longest_gap_ms = -1.0;
-  // The frames' path ("raw", "depth", "usb", "replay"; "" without a camera
+  // The frames' path ("raw", "depth", "usb", "royale", "replay"; "" without a camera
   // task here) and, on the raw and USB paths, the ToF processing's figures.
   std::string camera_path;
   std::optional<pico_flexx::PipelineCounts> tof;
   std::int64_t tof_median_us = -1;
-  std::optional<UsbPathReport> usb;  // the USB path's driver (and emulated camera)
+  std::optional<UsbPathReport> usb;        // the USB path's driver (and emulated camera)
+  std::optional<RoyalePathReport> royale;  // the camera through the royale API
   double estimator_longest_latency_ms = -1.0;
   std::optional<LogPlayerCounts> replay;
   std::int64_t log_messages = -1;

@@ -81,7 +81,7 @@ void test_unusable_calibration_file_stops_the_start(void**) {
   assert_true(r.output.find(nowhere) != std::string::npos);
   r = run_fsw_app(sim_args({"--camera", "phase"}));
   expect_exit(r, 2);
-  assert_true(r.output.find("--camera is raw, depth or usb") != std::string::npos);
+  assert_true(r.output.find("--camera is raw, depth, usb or royale") != std::string::npos);
   r = run_fsw_app({"--hal", "real", "--camera-replay", source("tests/data"), "--camera", "raw"});
   expect_exit(r, 2);
   assert_true(r.output.find("--hal sim") != std::string::npos);

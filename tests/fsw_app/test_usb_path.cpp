@@ -5,7 +5,9 @@
 // perch must land within 1 cm with no frame lost; pulling the cable and
 // halting the stream endpoint mid-approach must be recovered from and
 // counted; the USB faults are refused on any other path; and on the robot
-// (--hal real) a missing camera stops the start with a reason.
+// (--hal real) a missing camera stops the start with a reason. The same
+// perch through the royale API (--camera royale: hal::DepthCamera on
+// royale, here the project's royale on the same driver).
 #include <cstdio>
 #include <initializer_list>
 #include <string>
@@ -33,9 +35,13 @@ std::string nested_text(const Run& r, std::initializer_list<const char*> path) {
 
 std::vector<std::string> usb_perch_args(std::vector<std::string> extra) {
   std::vector<std::string> a = {
-      "--hal",    "sim",       "--scenario", source("sim_hal/scenarios/table2-iss.json"),
-      "--camera", "usb",       "--perch",    "--timeout",
-      "60",       "--lcm-url", "memq://"};
+      "--hal",   "sim",       "--scenario", source("sim_hal/scenarios/table2-iss.json"),
+      "--perch", "--timeout", "60",         "--lcm-url",
+      "memq://"};
+  // The path is usb unless the extra arguments name another.
+  bool camera_named = false;
+  for (const std::string& e : extra) camera_named = camera_named || e == "--camera";
+  if (!camera_named) a.insert(a.end(), {"--camera", "usb"});
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
 }
@@ -59,6 +65,12 @@ Run perch_over_usb(const std::string& name, std::vector<std::string> extra) {
     r = run_fsw_app(usb_perch_args(extra), summary);
   }
   if (!perched_within_1cm(r)) print_error("exit %d:\n%s\n", r.exit_status, r.output.c_str());
+  if (nested_text(r, {"camera", "path"}) == "royale") {
+    std::printf("  %s: %s, grasp %.1f mm, %.0f frames delivered through royale\n", name.c_str(),
+                r.summary.text("arm_state").c_str(), 1e3 * r.number("grasp_error_m"),
+                nested_number(r, {"camera", "royale", "frames_delivered"}));
+    return r;
+  }
   std::printf("  %s: %s, grasp %.1f mm, %.0f frames delivered over USB, %.0f lost, ToF %.0f us\n",
               name.c_str(), r.summary.text("arm_state").c_str(), 1e3 * r.number("grasp_error_m"),
               nested_number(r, {"camera", "usb", "frames_delivered"}),
@@ -105,6 +117,25 @@ void test_perch_rides_out_an_unplug_and_a_stall(void**) {
   assert_true(nested_text(r, {"camera", "usb", "state"}) != "LOST");
 }
 
+void test_perch_through_royale(void**) {
+  const Run r = perch_over_usb("royale-clean", {"--seed", "5", "--camera", "royale"});
+  assert_int_equal(r.exit_status, 0);
+  assert_true(perched_within_1cm(r));
+  assert_string_equal(nested_text(r, {"camera", "path"}).c_str(), "royale");
+  const double delivered = nested_number(r, {"camera", "royale", "frames_delivered"});
+  const double made = nested_number(r, {"camera", "royale", "frames_made_by_camera"});
+  std::printf("  royale: %.0f frames delivered of %.0f made, capture clock %s\n", delivered, made,
+              nested_text(r, {"camera", "royale", "capture_clock"}).c_str());
+  assert_true(delivered >= 20.0);
+  // Every frame made reached the camera task, but one the camera made as
+  // the run stopped.
+  assert_true(made - delivered <= 1.0);
+  assert_true(nested_number(r, {"camera", "royale", "frames_malformed"}) == 0.0);
+  assert_string_equal(nested_text(r, {"camera", "royale", "capture_clock"}).c_str(), "SAME");
+  assert_true(r.number("frames_received") == delivered);
+  assert_true(r.number("frames_corrupt") == 0.0);
+}
+
 void test_usb_faults_need_the_usb_path(void**) {
   Run r = run_fsw_app({"--hal", "sim", "--scenario", source("sim_hal/scenarios/table2-iss.json"),
                        "--perch", "--fault", "usb-unplug"});
@@ -127,6 +158,19 @@ void test_robot_without_a_camera_says_so(void**) {
   assert_true(r.output.find("--camera-replay") != std::string::npos);
 }
 
+void test_robot_royale_without_a_camera_says_so(void**) {
+  Run r = run_fsw_app({"--hal", "real", "--camera", "royale", "--tasks", "camera,estimator",
+                       "--duration", "1", "--lcm-url", "memq://"});
+  if (r.exit_status != 1) print_error("exit %d:\n%s\n", r.exit_status, r.output.c_str());
+  assert_int_equal(r.exit_status, 1);
+  assert_true(r.output.find("royale lists no camera") != std::string::npos);
+  assert_true(r.output.find("--camera-replay") != std::string::npos);
+  // A simulated camera's path is no choice on the robot.
+  r = run_fsw_app({"--hal", "real", "--camera", "raw", "--tasks", "camera", "--duration", "1"});
+  assert_int_equal(r.exit_status, 2);
+  assert_true(r.output.find("simulated camera's path") != std::string::npos);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -138,8 +182,10 @@ int main(int argc, char** argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_usb_faults_need_the_usb_path),
       cmocka_unit_test(test_robot_without_a_camera_says_so),
+      cmocka_unit_test(test_robot_royale_without_a_camera_says_so),
       cmocka_unit_test(test_perch_through_the_usb_driver),
       cmocka_unit_test(test_perch_rides_out_an_unplug_and_a_stall),
+      cmocka_unit_test(test_perch_through_royale),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }
