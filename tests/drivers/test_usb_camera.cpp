@@ -264,6 +264,50 @@ void test_streaming_without_loss(void**) {
   assert_true(c.transfers_submitted > c0.transfers_submitted);
 }
 
+// A host too slow to take its frames: the listener holds the event thread
+// for 2 s once, so no transfer is reaped or resubmitted meanwhile. The
+// camera's FIFO (45 frames, 1 s at 45 fps) fills and overflows: the frames
+// it could not keep are dropped at the camera, and the driver must count
+// exactly those as missed (the gap in the sequence numbers), refuse
+// nothing, hand on no bad frame, and stream on afterwards.
+class StallingListener final : public pico_flexx::RawFrameListener {
+ public:
+  void on_raw_frame(const pico_flexx::RawFrameInfo& info, const tof::RawFrame& frame) override {
+    inner.on_raw_frame(info, frame);
+    if (inner.frames.load() == stall_at) sleep_ms(2000);
+  }
+  CheckingListener inner;
+  long stall_at = 20;
+};
+
+void test_slow_host_loses_frames_at_the_camera(void**) {
+  pico_flexx::UsbCamera cam(default_config(), g_rig->clock);
+  assert_int_equal(cam.open(), UsbStatus::kOk);
+  const sim_hal::EmulatorCounts before = g_rig->camera->counts();
+  StallingListener listener;
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kOk);
+  // The stall, then 45 more frames once the host is back.
+  assert_true(
+      wait_for([&] { return listener.inner.frames.load() >= listener.stall_at + 45; }, 15000));
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  const sim_hal::EmulatorCounts after = g_rig->camera->counts();
+  const pico_flexx::UsbCounters c = cam.counters();
+  const auto dropped_at_camera =
+      static_cast<long>(after.frames_dropped_no_transfer - before.frames_dropped_no_transfer);
+  std::printf(
+      "slow host (event thread held 2 s): %ld frames delivered, %ld dropped at the camera, "
+      "%llu missed by the driver, %llu refused, %llu silences, state %s\n",
+      listener.inner.frames.load(), dropped_at_camera,
+      static_cast<unsigned long long>(c.assembly.frames_missed),
+      static_cast<unsigned long long>(c.assembly.dropped()),
+      static_cast<unsigned long long>(c.silences), pico_flexx::to_string(cam.state()));
+  assert_true(dropped_at_camera >= 20);  // 90 due in 2 s, at most 45 + 4 kept
+  assert_int_equal(static_cast<long>(c.assembly.frames_missed), dropped_at_camera);
+  assert_int_equal(c.assembly.dropped(), 0);
+  assert_int_equal(listener.inner.bad_frames.load(), 0);
+  assert_true(cam.state() != CameraState::kLost);
+}
+
 // Streams until `frames` more frames have arrived (bounded); true if they did.
 bool frames_arrive(const CheckingListener& listener, long frames, int timeout_ms) {
   const long target = listener.frames.load() + frames;
@@ -410,6 +454,7 @@ int main(int, char** argv) {
       cmocka_unit_test(test_command_timeout),
       cmocka_unit_test(test_use_case_change),
       cmocka_unit_test(test_streaming_without_loss),
+      cmocka_unit_test(test_slow_host_loses_frames_at_the_camera),
       cmocka_unit_test(test_corrupt_and_short_frames_dropped),
       cmocka_unit_test(test_stall_recovery),
       cmocka_unit_test(test_ladder_to_usb_reset),
