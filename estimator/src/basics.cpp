@@ -59,6 +59,7 @@ const char* validate(const DetectorConfig& c) {
   if (!(c.beam_length_min_ratio > 0.0f && c.beam_length_max_ratio > c.beam_length_min_ratio))
     return "beam_length_max_ratio";
   if (!(c.end_search_m > 0.0f)) return "end_search_m";
+  if (!(c.end_drop_max_m > 0.0f)) return "end_drop_max_m";
   if (!(c.front_height_tolerance_m > 0.0f)) return "front_height_tolerance_m";
   if (c.mount_accept_inliers == 0) return "mount_accept_inliers";
   if (c.max_width == 0 || c.max_height == 0 || c.max_width > Workspace::kMaxWidth ||
@@ -73,6 +74,14 @@ const char* validate(const DetectorConfig& c) {
   if (!(c.mount_bay_min_m >= 0.0f)) return "mount_bay_min_m";
   if (!(c.mount_step_m >= 0.0f && c.mount_step_m <= 0.1f)) return "mount_step_m";
   if (!(c.mount_min_fraction > 0.0f && c.mount_min_fraction < 1.0f)) return "mount_min_fraction";
+  if (!(c.mount_beside_min_m >= 0.0f && c.mount_beside_max_m > c.mount_beside_min_m &&
+        c.mount_beside_max_m <= 0.3f)) {
+    return "mount_beside_max_m";
+  }
+  if (!(c.mount_beside_tolerance_m > 0.0f)) return "mount_beside_tolerance_m";
+  if (!(c.mount_beside_min_fraction >= 0.0f && c.mount_beside_min_fraction <= 1.0f)) {
+    return "mount_beside_min_fraction";
+  }
   if (c.max_mount_hypotheses == 0 || c.max_mount_hypotheses > kMaxMountHypotheses) {
     return "max_mount_hypotheses";
   }
@@ -114,6 +123,10 @@ const char* to_string(LineVerdict verdict) {
       return "TOO_SHORT";
     case LineVerdict::kTooLong:
       return "TOO_LONG";
+    case LineVerdict::kNoMountBeside:
+      return "NO_MOUNT_BESIDE";
+    case LineVerdict::kRampEnd:
+      return "RAMP_END";
     case LineVerdict::kBeamLength:
       return "BEAM_LENGTH";
   }

@@ -8,6 +8,7 @@
 #include "estimator/handrail_pose.hpp"
 #include "estimator/handrail_types.hpp"
 #include "estimator/line_estimation.hpp"
+#include "estimator/mount_beside.hpp"
 #include "estimator/mount_surfaces.hpp"
 #include "estimator/plane_estimation.hpp"
 
@@ -137,7 +138,21 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
     return LineVerdict::kNoCenterLine;
   }
   if (!seat_on_mount(cloud, inliers, line)) return LineVerdict::kWrongHeight;
-  detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, ends, end_t);
+  // The mount it was seated on must be there beside it (wall_ is the
+  // search's mount plane; the line's mount is measured from the dominant one).
+  const MountBeside beside =
+      measure_mount_beside(cloud, cfg_, ws_, wall_, *line, line->mount_offset_m - search_mount_m_);
+  if (!mount_shows_beside(beside, cfg_)) return LineVerdict::kNoMountBeside;
+  float drop_m[2] = {0.0f, 0.0f};
+  // The front's height in the search's distances (from its wall, not the
+  // mount the line was seated on).
+  const float front_level_m = line->front_height_m + line->mount_offset_m - search_mount_m_;
+  detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, ends, end_t, drop_m, front_level_m);
+  for (int e = 0; e < 2; ++e) {
+    if (!ends[e]) continue;
+    const Eigen::Vector3f end_point = line->point + end_t[e] * line->axis;
+    if (drop_m[e] > allowed_end_drop_m(cfg_, scale_, end_point.z())) return LineVerdict::kRampEnd;
+  }
   // The beam-length check of Algorithm 1 applies in full only when both
   // ends are seen, against every known length; a bar that runs out of view
   // need only be long enough not to be clutter, and never longer than the

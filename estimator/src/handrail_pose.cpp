@@ -195,10 +195,17 @@ bool bar_front_height_test(const DetectorConfig& cfg, const CenterLine& line) {
 
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
-                 bool end_seen[2], float end_t_m[2]) {
+                 bool end_seen[2], float end_t_m[2], float end_drop_m[2], float front_level_m) {
   end_seen[0] = end_seen[1] = false;
   end_t_m[0] = line.t_min_m;
   end_t_m[1] = line.t_max_m;
+  if (end_drop_m != nullptr) end_drop_m[0] = end_drop_m[1] = 0.0f;
+  // Where a pixel counts as at the front's height: within the front-height
+  // test's tolerance and twice its noise (at most a centimetre more).
+  auto front_tolerance = [&cfg](const CloudPoint& p) {
+    const float noise = p.noise_m > 0.0f && p.noise_m < 0.05f ? p.noise_m : 0.0f;
+    return cfg.front_height_tolerance_m + std::fmin(2.0f * noise, 0.01f);
+  };
   if (inliers.size() < 2 || !scale.ok) return;
   const int w = static_cast<int>(cloud.width);
 
@@ -238,6 +245,15 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
       }
     }
     if (m == 0) continue;
+    // The last of the bar's own pixels at its front's height toward this
+    // end (the inliers may run on down a ramp).
+    float t_front = end == 0 ? INFINITY : -INFINITY;
+    for (std::int32_t i : inliers) {
+      if (ws.signed_distance_m[i] < front_level_m - front_tolerance(cloud.points[i])) continue;
+      const float t = (point_of(cloud, i) - line.point).dot(line.axis);
+      t_front = end == 0 ? std::min(t_front, t) : std::max(t_front, t);
+    }
+    if (!std::isfinite(t_front)) t_front = t_inner;
     Eigen::Vector2f start(static_cast<float>(ru / m), static_cast<float>(rv / m));
     // Point the image direction outward: toward this end along the bar.
     Eigen::Vector2f outward =
@@ -290,6 +306,9 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
           ++across_n;
           const float t = (point_of(cloud, i) - line.point).dot(line.axis);
           t_bar = end == 0 ? std::min(t_bar, t) : std::max(t_bar, t);
+          if (s >= front_level_m - front_tolerance(cloud.points[i])) {
+            t_front = end == 0 ? std::min(t_front, t) : std::max(t_front, t);
+          }
         }
       }
       if (in_front) break;  // something hides the end, or the image ends
@@ -312,7 +331,13 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
       past_bar = on_bar ? 0 : past_bar + 1;
     }
     end_t_m[end] = t_bar;
+    if (end_drop_m != nullptr) end_drop_m[end] = std::fabs(t_bar - t_front);
   }
+}
+
+float allowed_end_drop_m(const DetectorConfig& cfg, const PixelScale& scale, float z_m) {
+  const float pixel_m = scale.ok && scale.fx_px > 0.0f ? z_m / scale.fx_px : 0.0f;
+  return cfg.end_drop_max_m + 2.0f * pixel_m;
 }
 
 HandrailState handrail_state(const bool end_seen[2]) {

@@ -2,9 +2,25 @@
 """Writes the shipped scenario files. The JSON files are committed; rerun
 this after changing it (python3 generate.py) and commit both.
 
+python3 generate.py --dev DIR writes a development set instead: the rack-wall
+scenarios with every layout drawn from other seeds (and other sensor noise),
+named dev-*, into DIR (not committed). Work on the detector is tried there;
+the shipped scenarios stay the ones it is judged on, so that no threshold is
+fitted to the scenes that score it.
+
 World frame: the main wall is the plane x = 0, facing +x (toward the room),
 z up. Cameras face -x unless a pose says otherwise."""
 import json
+import os
+import sys
+
+# --dev DIR: the development set (see above).
+DEV_DIR = None
+DEV_SEED_OFFSET = 50000
+if len(sys.argv) == 3 and sys.argv[1] == "--dev":
+    DEV_DIR = os.path.abspath(sys.argv[2])
+elif len(sys.argv) != 1:
+    sys.exit("usage: generate.py [--dev DIR]")
 
 WALL = {"center": [0, 0, 0], "normal": [1, 0, 0], "up": [0, 0, 1], "size": [4.0, 2.5], "reflectivity": 0.6}
 
@@ -106,11 +122,27 @@ def corner():
             "seed": 51, "frame_rate_hz": 5, "scene": scene,
             "poses": [{"label": "corner", "position": [0.8, -0.1, 0.0], "rpy_deg": [0, 0, -10], "to": {"position": [0.65, 0.0, 0.0], "rpy_deg": [0, 0, -20]}, "frames": 40}]}
 
+ASSETS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets")
+
 def write(s):
-    with open(s["name"] + ".json", "w") as f:
+    if DEV_DIR is not None:
+        # Only the rack walls: their layouts come from the seeds. Columbus's
+        # geometry is the module's, the same in any set, so it stays judged
+        # only. Mesh paths made absolute, the files living elsewhere.
+        if not s["name"].startswith("rack-") or "control" in s["name"]:
+            return
+        text = json.dumps(s).replace('"../assets/', '"' + os.path.normpath(ASSETS) + '/')
+        s = json.loads(text)
+        s["name"] = "dev-" + s["name"]
+        s["seed"] += DEV_SEED_OFFSET
+        os.makedirs(DEV_DIR, exist_ok=True)
+        path = os.path.join(DEV_DIR, s["name"] + ".json")
+    else:
+        path = s["name"] + ".json"
+    with open(path, "w") as f:
         json.dump(s, f, indent=1)
         f.write("\n")
-    print("wrote", s["name"] + ".json")
+    print("wrote", path)
 
 for s in (table2("round"), table2("iss"), table2("iss_mesh"), sweep(), approach("iss"), approach("round"),
           approach("iss_mesh"), clutter_only(), two_perpendicular(), corner()):
@@ -137,6 +169,13 @@ for s in (table2("round"), table2("iss"), table2("iss_mesh"), sweep(), approach(
 # Every layout is drawn from a seeded random.Random, so the files are the
 # same on every run.
 import random
+
+if DEV_DIR is not None:
+    # Every layout drawn from other seeds: random.Random(seed) shifted.
+    class _ShiftedRandom(random.Random):
+        def __init__(self, seed=None):
+            super().__init__(seed + DEV_SEED_OFFSET if isinstance(seed, int) else seed)
+    random.Random = _ShiftedRandom
 
 TRACK_W, TRACK_H, RAIL_OFFSET = 0.026, 0.013, 0.061
 MESHES = {  # file, bar length (measured from the mesh by sim_hal's measure_bar)

@@ -8,7 +8,9 @@
 #include "cmocka_cpp.hpp"
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_types.hpp"
+#include "estimator/mount_beside.hpp"
 #include "estimator/mount_surfaces.hpp"
+#include "estimator/plane_estimation.hpp"
 #include "synthetic_cloud.hpp"
 
 using namespace estimator;
@@ -241,6 +243,82 @@ void test_one_configured_length_without_types(void**) {
   assert_near(longest_handrail_m(cfg), 0.3f, 1e-6f);
 }
 
+// A frame for the mount-beside step: a fronto-parallel grid of points 4 mm
+// apart, 1 m away (the wall z = 1, its normal toward the camera), a bar's
+// centre line along image y through the middle. `height_beside` gives each
+// pixel's height above the wall from its distance across the bar (x); NAN
+// leaves it invalid.
+struct BesideFrame {
+  std::vector<CloudPoint> points;
+  OrganizedCloud cloud;
+  Workspace ws{224 * 171};
+  Plane wall;
+  CenterLine line;
+  template <typename F>
+  explicit BesideFrame(F height_beside) : points(224 * 171) {
+    for (int r = 0; r < 171; ++r) {
+      for (int c = 0; c < 224; ++c) {
+        const float x = 0.004f * static_cast<float>(c - 112),
+                    y = 0.004f * static_cast<float>(r - 85);
+        const float h = height_beside(x);
+        CloudPoint& p = points[static_cast<std::size_t>(r) * 224 + c];
+        p = CloudPoint{x,      y,   1.0f - (std::isnan(h) ? 0.0f : h),
+                       0.001f, 100, static_cast<std::uint8_t>(std::isnan(h) ? 0 : 255)};
+      }
+    }
+    cloud.width = 224;
+    cloud.height = 171;
+    cloud.points = points.data();
+    sample_valid_points(cloud, DetectorConfig{}, ws);
+    wall.normal = Eigen::Vector3f(0, 0, -1);
+    wall.d = 1.0f;
+    line.point = Eigen::Vector3f(0, 0, 1.0f - 0.074f);
+    line.axis = Eigen::Vector3f(0, 1, 0);
+    line.t_min_m = -0.25f;
+    line.t_max_m = 0.25f;
+  }
+  bool shows(float mount_m) const {
+    const DetectorConfig cfg;
+    return mount_shows_beside(measure_mount_beside(cloud, cfg, ws, wall, line, mount_m), cfg);
+  }
+};
+
+// The bar's own pixels (within 1 cm across) stand at its front; beside it,
+// what each case puts there.
+float bar_or(float x, float beside) {
+  return std::fabs(x) < 0.01f ? 0.078f : beside;
+}
+
+void test_the_mount_shows_beside_a_handrail(void**) {
+  // A seat track's foot (the rack face 1.3 cm below the track) beside it:
+  // the bar stands on the track, 1.3 cm above the wall.
+  const BesideFrame on_track([](float x) { return bar_or(x, 0.0f); });
+  assert_true(on_track.shows(0.013f));
+  // A flat wall: the bar stands on it.
+  assert_true(on_track.shows(0.0f));
+  // A gap 12 cm deep on one side, the face on the other: still standing.
+  const BesideFrame gap_one_side([](float x) { return bar_or(x, x > 0.0f ? -0.12f : 0.0f); });
+  assert_true(gap_one_side.shows(0.013f));
+  const MountBeside m = measure_mount_beside(gap_one_side.cloud, DetectorConfig{}, gap_one_side.ws,
+                                             gap_one_side.wall, gap_one_side.line, 0.013f);
+  assert_true(m.band_pixels[0] >= 20 && m.band_pixels[1] >= 20);
+  assert_true(m.at_mount[0] == 0 || m.at_mount[1] == 0);
+}
+
+void test_no_mount_beside_is_no_handrail(void**) {
+  // Something a handrail's height above a surface 3.8 cm behind the wall,
+  // with nothing at that depth beside it (a rack's edge strip over a deep
+  // groove, seen as a bar on a mount elsewhere in view).
+  const BesideFrame strip([](float x) { return bar_or(x, -0.12f); });
+  assert_false(strip.shows(-0.038f));
+  // ... nor is the wall it was measured from a mount 3.8 cm off.
+  const BesideFrame wall_beside([](float x) { return bar_or(x, 0.0f); });
+  assert_false(wall_beside.shows(-0.038f));
+  // Nothing valid beside it at all: no evidence, no refusal.
+  const BesideFrame nothing([](float x) { return std::fabs(x) < 0.01f ? 0.078f : NAN; });
+  assert_true(nothing.shows(-0.038f));
+}
+
 void test_bad_mount_and_type_settings_are_named(void**) {
   DetectorConfig cfg;
   cfg.max_mount_hypotheses = 0;
@@ -262,6 +340,15 @@ void test_bad_mount_and_type_settings_are_named(void**) {
   cfg.mount_bay_min_m = cfg.mount_bay_max_m = -0.1f;
   assert_string_equal(validate(cfg), "mount_bay_min_m");
   cfg = DetectorConfig{};
+  cfg.mount_beside_max_m = cfg.mount_beside_min_m;
+  assert_string_equal(validate(cfg), "mount_beside_max_m");
+  cfg = DetectorConfig{};
+  cfg.mount_beside_min_fraction = 1.5f;
+  assert_string_equal(validate(cfg), "mount_beside_min_fraction");
+  cfg = DetectorConfig{};
+  cfg.end_drop_max_m = 0.0f;
+  assert_string_equal(validate(cfg), "end_drop_max_m");
+  cfg = DetectorConfig{};
   cfg.handrail_types[1].bar_length_m = NAN;
   assert_string_equal(validate(cfg), "handrail_types");
   cfg = DetectorConfig{};
@@ -281,6 +368,8 @@ int main() {
       cmocka_unit_test(test_a_small_surface_is_no_surface),
       cmocka_unit_test(test_huge_and_not_finite_distances_are_ignored),
       cmocka_unit_test(test_the_mount_under_a_bar),
+      cmocka_unit_test(test_the_mount_shows_beside_a_handrail),
+      cmocka_unit_test(test_no_mount_beside_is_no_handrail),
       cmocka_unit_test(test_shifted_pass_equals_a_full_pass),
       cmocka_unit_test(test_iss_lengths_are_matched_by_ratio),
       cmocka_unit_test(test_one_configured_length_without_types),

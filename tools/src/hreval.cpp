@@ -48,6 +48,8 @@ void usage(FILE* out) {
                "                    frames through the robot's ToF processing, or both, the\n"
                "                    report's tables on the depth path and a table of every\n"
                "                    scenario's raw-path rates beside them\n"
+               "  --seed-offset N   add N to every scenario's seed: the same scenes and poses\n"
+               "                    with other sensor noise (how much a rate moves by chance)\n"
                "  -h, --help        this text\n",
                HRP_SCENARIO_DIR);
 }
@@ -198,6 +200,7 @@ int main(int argc, char** argv) {
   std::string scenario_dir = HRP_SCENARIO_DIR, out_dir = "hreval-out";
   long max_frames = -1;
   bool true_length = false;
+  long long seed_offset = 0;
   std::vector<std::string> paths = {"depth"};
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
@@ -220,6 +223,14 @@ int main(int argc, char** argv) {
       max_frames = std::atol(next("--max-frames").c_str());
     } else if (a == "--true-length") {
       true_length = true;
+    } else if (a == "--seed-offset") {
+      const std::string v = next("--seed-offset");
+      char* end = nullptr;
+      seed_offset = std::strtoll(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0' || seed_offset < 0) {
+        std::fprintf(stderr, "hreval: --seed-offset is a whole number >= 0, not '%s'\n", v.c_str());
+        return 2;
+      }
     } else if (a == "--camera") {
       const std::string v = next("--camera");
       if (v != "depth" && v != "raw" && v != "both") {
@@ -261,6 +272,7 @@ int main(int argc, char** argv) {
       ++failures;
       continue;
     }
+    sc.seed += static_cast<std::uint64_t>(seed_offset);
     ScenarioResult r;
     r.name = sc.name;
     const bool round = !sc.scene.handrails.empty() &&

@@ -72,6 +72,18 @@ struct DetectorConfig {
   // A handrail found with this many line inliers ends the search over
   // mounts; with fewer, the other mounts are searched too.
   std::uint32_t mount_accept_inliers = 120;
+  // The mount beside the bar (mount_beside.hpp): in a band from
+  // mount_beside_min_m (past a seat track's half width, 1.3 cm) to
+  // mount_beside_max_m across from the centre line, at least
+  // mount_beside_min_fraction of one side's sampled pixels lie on the
+  // mount, or on the face a seat track stands on, within the tolerance
+  // (widened by twice the pixel's noise). A side with fewer than
+  // mount_beside_min_pixels sampled pixels is not judged.
+  float mount_beside_min_m = 0.015f;
+  float mount_beside_max_m = 0.06f;
+  float mount_beside_tolerance_m = 0.005f;
+  float mount_beside_min_fraction = 0.3f;
+  std::uint32_t mount_beside_min_pixels = 4;
 
   // Gap distance test (eq. 1): the bar's visible surface lies between
   // offset - depth/2 and offset + depth/2 from the wall, widened by this
@@ -106,6 +118,13 @@ struct DetectorConfig {
 
   // End detection: how far past the bar's last pixel to look for the wall.
   float end_search_m = 0.10f;
+  // A seen end's drop (detect_ends): how far raised structure runs on past
+  // the last pixel at the bar's front height. At a handrail's end the only
+  // such structure is its leg, about 4.5 cm along the rail (the ISS meshes),
+  // and seen from the side the leg's face shows below the front over that
+  // length; a cable at a handrail's height comes down to the surface in a
+  // ramp. Past this plus two pixels, the end is no handrail's.
+  float end_drop_max_m = 0.045f;
 
   // Target pose: p_g = p_c + d_c v_P.
   float target_standoff_m = 0.35f;

@@ -28,12 +28,14 @@ const char* to_string(DetectStatus status);
 // Why the verification of a line candidate rejected it.
 enum class LineVerdict : std::uint8_t {
   kAccepted,
-  kTooFewPoints,  // its cluster is smaller than min_line_inliers
-  kWrongHeight,   // its front face is not where the bar's is
-  kNoCenterLine,  // degenerate points
-  kTooShort,      // visible part shorter than min_visible_length_m
-  kTooLong,       // longer than b_H,max
-  kBeamLength,    // both ends seen, length outside b_H,min..b_H,max
+  kTooFewPoints,   // its cluster is smaller than min_line_inliers
+  kWrongHeight,    // its front face is not where the bar's is
+  kNoCenterLine,   // degenerate points
+  kTooShort,       // visible part shorter than min_visible_length_m
+  kTooLong,        // longer than b_H,max
+  kBeamLength,     // both ends seen, length outside b_H,min..b_H,max
+  kNoMountBeside,  // the surface it would stand on is not beside it
+  kRampEnd,        // a seen end comes down in a ramp, not at a leg
 };
 const char* to_string(LineVerdict verdict);
 

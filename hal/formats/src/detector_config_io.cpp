@@ -38,12 +38,17 @@ constexpr FloatKey kFloatKeys[] = {
     {"min_visible_length_m", &estimator::DetectorConfig::min_visible_length_m},
     {"front_height_tolerance_m", &estimator::DetectorConfig::front_height_tolerance_m},
     {"end_search_m", &estimator::DetectorConfig::end_search_m},
+    {"end_drop_max_m", &estimator::DetectorConfig::end_drop_max_m},
     {"target_standoff_m", &estimator::DetectorConfig::target_standoff_m},
     {"mount_search_m", &estimator::DetectorConfig::mount_search_m},
     {"mount_bay_min_m", &estimator::DetectorConfig::mount_bay_min_m},
     {"mount_bay_max_m", &estimator::DetectorConfig::mount_bay_max_m},
     {"mount_step_m", &estimator::DetectorConfig::mount_step_m},
     {"mount_min_fraction", &estimator::DetectorConfig::mount_min_fraction},
+    {"mount_beside_min_m", &estimator::DetectorConfig::mount_beside_min_m},
+    {"mount_beside_max_m", &estimator::DetectorConfig::mount_beside_max_m},
+    {"mount_beside_tolerance_m", &estimator::DetectorConfig::mount_beside_tolerance_m},
+    {"mount_beside_min_fraction", &estimator::DetectorConfig::mount_beside_min_fraction},
 };
 constexpr UintKey kUintKeys[] = {
     {"plane_iterations", &estimator::DetectorConfig::plane_iterations},
@@ -56,6 +61,7 @@ constexpr UintKey kUintKeys[] = {
     {"max_height", &estimator::DetectorConfig::max_height},
     {"max_mount_hypotheses", &estimator::DetectorConfig::max_mount_hypotheses},
     {"mount_accept_inliers", &estimator::DetectorConfig::mount_accept_inliers},
+    {"mount_beside_min_pixels", &estimator::DetectorConfig::mount_beside_min_pixels},
 };
 
 std::string at(const std::string& path, const JsonValue& v) {

@@ -1,0 +1,43 @@
+#pragma once
+// A handrail stands on its mount, so the mount shows beside it.
+//
+// The front-height test (mount_surfaces.hpp) asks only that some surface in
+// view lie a handrail's height below the bar's front face. With two or
+// three faces at different depths in every rack-wall view, some surface
+// nearly always does, whatever stands there: a rack's edge strip beside a
+// groove, a cable bridging at handrail height over another face. A real
+// handrail stands on that surface (a seat track on a rack face, or a flat
+// wall): in a band beside the bar, past the track's half width, the pixels
+// on at least one side lie on the mount or on the face the track stands
+// on. The bar's own shadow can hide one side, never both. Fewer sampled
+// pixels in both bands than the test needs is no evidence either way.
+#include <cstdint>
+
+#include "estimator/config.hpp"
+#include "estimator/handrail_pose.hpp"
+#include "estimator/organized_cloud.hpp"
+#include "estimator/types.hpp"
+#include "estimator/workspace.hpp"
+
+namespace estimator {
+
+struct MountBeside {
+  // Per side of the bar (across it, in the wall plane): the lattice sample's
+  // valid pixels in the band, and of them those on the mount's level or a
+  // seat track's foot below it.
+  std::uint32_t band_pixels[2] = {0, 0};
+  std::uint32_t at_mount[2] = {0, 0};
+};
+
+// From the lattice sample (ws.sample). `wall` is the plane the search
+// measures heights from, `mount_above_wall_m` the mount's height above it;
+// `line` the candidate's centre line (its visible extent t_min..t_max).
+MountBeside measure_mount_beside(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                 const Workspace& ws, const Plane& wall, const CenterLine& line,
+                                 float mount_above_wall_m);
+
+// The verdict: enough of either side's band on the mount, or too few
+// pixels in both bands to tell.
+bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
+
+}  // namespace estimator
