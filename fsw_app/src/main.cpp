@@ -492,8 +492,13 @@ int main(int argc, char** argv) {
   if (player) player->stop();
   if (manager) manager->stop();
   if (arm_task) arm_task->stop();
+  // The driver's state as the run ended, before stopping puts it back to
+  // OPEN; the counts after the stop, complete.
+  frames.report(&summary);
+  const std::string usb_state_at_end = summary.usb ? summary.usb->state : std::string();
   if (camera) (void)camera->stop_capture();
   frames.report(&summary);
+  if (summary.usb && !usb_state_at_end.empty()) summary.usb->state = usb_state_at_end;
   if (estimator_task) {
     estimator_task->stop();
     estimator_task->publish_health();

@@ -96,6 +96,8 @@ void test_perch_through_the_usb_driver(void**) {
   assert_true(r.number("frames_corrupt") == 0.0);
   assert_true(nested_number(r, {"camera", "usb", "unplugs"}) == 0.0);
   assert_true(nested_number(r, {"camera", "usb", "stalls"}) == 0.0);
+  // The state as the run ended (streaming), not the one stopping leaves.
+  assert_string_equal(nested_text(r, {"camera", "usb", "state"}).c_str(), "STREAMING");
 }
 
 void test_perch_rides_out_an_unplug_and_a_stall(void**) {
