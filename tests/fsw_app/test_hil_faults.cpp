@@ -132,11 +132,7 @@ bool perched_within_1cm(const Outcome& o) {
 // A number inside the summary's nested objects ("localization", "approach",
 // "filter", "mean_m"); -1 when missing.
 double nested(const Outcome& o, std::initializer_list<const char*> path) {
-  const formats::JsonValue* v = &o.json;
-  for (const char* key : path) {
-    v = v ? v->find(key) : nullptr;
-  }
-  return v && v->is_number() ? v->number : -1.0;
+  return o.number_at(path);
 }
 
 void test_clean_perch(void**) {

@@ -19,18 +19,11 @@ using namespace fsw_app_runs;
 namespace {
 
 // A number or text inside the summary's nested objects; -1 / "" when missing.
-const formats::JsonValue* nested(const Run& r, std::initializer_list<const char*> path) {
-  const formats::JsonValue* v = &r.summary.json;
-  for (const char* key : path) v = v ? v->find(key) : nullptr;
-  return v;
-}
 double nested_number(const Run& r, std::initializer_list<const char*> path) {
-  const formats::JsonValue* v = nested(r, path);
-  return v && v->is_number() ? v->number : -1.0;
+  return r.summary.number_at(path);
 }
 std::string nested_text(const Run& r, std::initializer_list<const char*> path) {
-  const formats::JsonValue* v = nested(r, path);
-  return v && v->is_string() ? v->text : "";
+  return r.summary.text_at(path);
 }
 
 std::vector<std::string> usb_perch_args(std::vector<std::string> extra) {
