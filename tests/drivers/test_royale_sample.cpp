@@ -24,18 +24,10 @@
 
 #include "allocation_counter.hpp"
 #include "cmocka_cpp.hpp"
-#include "sim_hal/rendered_frame_source.hpp"
+#include "emulated_wall_rig.hpp"
 #include "sim_hal/umockdev_preload.hpp"
-#include "tof/calibration_io.hpp"
 
 namespace {
-
-struct FixedPose final : sim_hal::CameraPoseSource {
-  Eigen::Isometry3d T_world_cam(std::int64_t) override {
-    return sim_hal::camera_pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(-1, 0, 0),
-                                Eigen::Vector3d(0, 0, 1), Eigen::Vector3d::Zero());
-  }
-};
 
 // The number after `key` on its line, or NaN when the line is missing.
 double value_after(const std::string& text, const std::string& key) {
@@ -45,30 +37,13 @@ double value_after(const std::string& text, const std::string& key) {
 }
 
 // The emulated camera, shared by the tests: a wall 1 m ahead.
-struct Rig {
-  hal::MonotonicClock clock;
-  sim_hal::Scene scene;
-  tof::Calibration truth = sim_hal::simulated_calibration(sim_hal::pico_flexx_intrinsics(), 7);
-  sim_hal::RawRenderer renderer{sim_hal::pico_flexx_intrinsics(), sim_hal::ToFSettings{},
-                                sim_hal::RawRenderSettings{}, truth};
-  FixedPose pose;
-  std::unique_ptr<sim_hal::RenderedFrameSource> source;
-  sim_hal::EmulatedCameraConfig config;
-  std::unique_ptr<sim_hal::EmulatedPicoFlexx> camera;
-};
+using Rig = testing_support::EmulatedWallRig;
 Rig* g_rig = nullptr;
 
 int set_up(void**) {
   g_rig = new Rig;
-  g_rig->scene.add_wall(Eigen::Vector3d(-1.0, 0, 0), Eigen::Vector3d(1, 0, 0),
-                        Eigen::Vector3d(0, 0, 1), 40.0, 40.0, 0.6);
-  g_rig->source = std::make_unique<sim_hal::RenderedFrameSource>(g_rig->scene, g_rig->pose,
-                                                                 g_rig->renderer, g_rig->clock, 11);
-  g_rig->config.calibration = tof::calibration_to_json(g_rig->truth);
   std::string error;
-  g_rig->camera =
-      sim_hal::EmulatedPicoFlexx::create(g_rig->config, g_rig->source.get(), g_rig->clock, &error);
-  if (!g_rig->camera) {
+  if (!g_rig->plug_in(&error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return -1;
   }
