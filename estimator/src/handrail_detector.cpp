@@ -17,6 +17,8 @@ namespace {
 constexpr float kQuarterPi = 0.78539816f;
 // The most the pixels' noise widens the front-height test.
 constexpr float kMaxNoiseWidening_m = 0.006f;
+// Half the least depth step between neighbouring rack faces (1 cm).
+constexpr float kSameFaceM = 0.005f;
 }  // namespace
 
 std::int64_t SteadyTimeSource::now_us() const {
@@ -119,7 +121,26 @@ bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexLis
       cfg_.front_height_tolerance_m + std::fmin(0.5f * mean_noise, kMaxNoiseWidening_m);
   const float front_m = line->front_height_m + search_mount_m_;
   float mount_m = 0.0f;
-  if (!find_mount_under_bar(mounts_, cfg_, front_m, tolerance, &mount_m)) return false;
+  // The surfaces measured right beside the bar count as surfaces in view:
+  // the bar stands on one, or on a seat track on one. Looked for between a
+  // track's foot below where the front puts the mount and a little above
+  // it (from the search's wall).
+  const float expected_mount_m =
+      line->front_height_m - (cfg_.handrail.bar_center_offset_m + 0.5f * cfg_.handrail.bar_depth_m);
+  const LevelsBeside near = find_levels_beside(
+      cloud, cfg_, ws_, wall_, *line, expected_mount_m - cfg_.mount_step_m - 2.0f * tolerance,
+      expected_mount_m + 2.0f * tolerance);
+  float near_levels[2];
+  for (std::uint32_t k = 0; k < near.count; ++k) {
+    // Neighbouring faces differ by a centimetre or more: a level nearer
+    // the dominant plane than half that is the plane's own face, measured
+    // through noise, and a bar on it has had the flat-wall verdict.
+    const float level_m = near.level_m[k] + search_mount_m_;
+    near_levels[k] = std::fabs(level_m) < kSameFaceM ? 0.0f : level_m;
+  }
+  if (!find_mount_under_bar(mounts_, cfg_, front_m, tolerance, &mount_m, near_levels, near.count)) {
+    return false;
+  }
   line->point += (mount_m - search_mount_m_) * wall_.normal;
   line->front_height_m = front_m - mount_m;
   line->mount_offset_m = mount_m;

@@ -1,6 +1,7 @@
 #include "estimator/mount_beside.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace estimator {
@@ -52,6 +53,85 @@ bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg) {
     }
   }
   return !judged;
+}
+
+LevelsBeside find_levels_beside(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                const Workspace& ws, const Plane& wall, const CenterLine& line,
+                                float lo_m, float hi_m) {
+  constexpr int kBins = 32;
+  constexpr float kBin_m = 0.0025f;
+  constexpr float kRefine_m = 0.005f;
+  LevelsBeside out;
+  if (!(hi_m > lo_m)) return out;
+  const int bins = std::min(kBins, static_cast<int>(std::ceil((hi_m - lo_m) / kBin_m)));
+  std::uint32_t hist[2][kBins] = {};
+  std::uint32_t band[2] = {0, 0};
+  const Eigen::Vector3f& n = wall.normal;
+  const Eigen::Vector3f& a = line.axis;
+  const Eigen::Vector3f across = a.cross(n);
+  // Two passes over the sample: the histogram, then the mean near its peak.
+  for (std::int32_t i : ws.sample) {
+    const CloudPoint& q = cloud.points[i];
+    const Eigen::Vector3f p(q.x_m, q.y_m, q.z_m);
+    const Eigen::Vector3f r = p - line.point;
+    const float t = r.dot(a);
+    if (t < line.t_min_m || t > line.t_max_m) continue;
+    const float u = r.dot(across);
+    const float u_abs = std::fabs(u);
+    if (u_abs < cfg.mount_beside_min_m || u_abs > cfg.mount_beside_max_m) continue;
+    const int side = u > 0.0f ? 1 : 0;
+    ++band[side];
+    const float x = (wall.signed_distance(p) - lo_m) / kBin_m;
+    if (!(x >= 0.0f && x < static_cast<float>(bins))) continue;  // NaN too
+    ++hist[side][static_cast<int>(x)];
+  }
+  float peak_m[2] = {0.0f, 0.0f};
+  bool have[2] = {false, false};
+  for (int side = 0; side < 2; ++side) {
+    if (band[side] < cfg.mount_beside_min_pixels) continue;
+    std::uint32_t best = 0;
+    int peak = -1;
+    for (int b = 0; b < bins; ++b) {
+      const std::uint32_t v = hist[side][b] + (b > 0 ? hist[side][b - 1] : 0u) +
+                              (b + 1 < bins ? hist[side][b + 1] : 0u);
+      if (v > best) {
+        best = v;
+        peak = b;
+      }
+    }
+    if (peak < 0) continue;
+    peak_m[side] = lo_m + (static_cast<float>(peak) + 0.5f) * kBin_m;
+    have[side] = true;
+  }
+  if (!have[0] && !have[1]) return out;
+  double sum[2] = {0.0, 0.0};
+  std::uint32_t near[2] = {0, 0};
+  for (std::int32_t i : ws.sample) {
+    const CloudPoint& q = cloud.points[i];
+    const Eigen::Vector3f p(q.x_m, q.y_m, q.z_m);
+    const Eigen::Vector3f r = p - line.point;
+    const float t = r.dot(a);
+    if (t < line.t_min_m || t > line.t_max_m) continue;
+    const float u = r.dot(across);
+    const float u_abs = std::fabs(u);
+    if (u_abs < cfg.mount_beside_min_m || u_abs > cfg.mount_beside_max_m) continue;
+    const int side = u > 0.0f ? 1 : 0;
+    if (!have[side]) continue;
+    const float h = wall.signed_distance(p);
+    if (std::fabs(h - peak_m[side]) <= kRefine_m) {
+      sum[side] += h;
+      ++near[side];
+    }
+  }
+  for (int side = 0; side < 2; ++side) {
+    if (!have[side] || near[side] < cfg.mount_beside_min_pixels) continue;
+    if (static_cast<float>(near[side]) <
+        cfg.mount_beside_min_fraction * static_cast<float>(band[side])) {
+      continue;
+    }
+    out.level_m[out.count++] = static_cast<float>(sum[side] / near[side]);
+  }
+  return out;
 }
 
 }  // namespace estimator

@@ -150,7 +150,8 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
 }
 
 bool find_mount_under_bar(const MountHypotheses& mounts, const DetectorConfig& cfg, float front_m,
-                          float tolerance_m, float* mount_m) {
+                          float tolerance_m, float* mount_m, const float* near_levels,
+                          std::uint32_t near_count) {
   const float expected_mount = front_m - bar_front_m(cfg);
   float best_error = tolerance_m;
   bool found = false;
@@ -166,6 +167,10 @@ bool find_mount_under_bar(const MountHypotheses& mounts, const DetectorConfig& c
   for (std::uint32_t k = 0; k < mounts.surface_count && k < kMaxSurfacePeaks; ++k) {
     consider(mounts.surface_m[k]);
     consider(mounts.surface_m[k] + cfg.mount_step_m);
+  }
+  for (std::uint32_t k = 0; near_levels != nullptr && k < near_count; ++k) {
+    consider(near_levels[k]);
+    consider(near_levels[k] + cfg.mount_step_m);
   }
   // A bar best explained as standing on the dominant plane itself has had
   // its verdict, by the flat-wall rules: it is not found again here.

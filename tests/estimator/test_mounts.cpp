@@ -319,6 +319,60 @@ void test_no_mount_beside_is_no_handrail(void**) {
   assert_true(nothing.shows(-0.038f));
 }
 
+// The levels beside the bar, for the front-height test: what each side
+// shows, measured there rather than taken from the frame's surface peaks.
+void test_the_levels_beside_a_bar(void**) {
+  const DetectorConfig cfg;
+  // A rack frame 2.2 cm behind the wall on one side (the track's foot: too
+  // narrow a strip to be a peak of the whole frame), a gap on the other.
+  const BesideFrame frame_strip([](float x) { return bar_or(x, x > 0.0f ? -0.022f : -0.12f); });
+  LevelsBeside near = find_levels_beside(frame_strip.cloud, cfg, frame_strip.ws, frame_strip.wall,
+                                         frame_strip.line, -0.06f, 0.01f);
+  assert_int_equal(near.count, 1);
+  assert_near(near.level_m[0], -0.022f, 0.0005f);
+  // The same surface on both sides: two levels, both it.
+  const BesideFrame both([](float x) { return bar_or(x, -0.022f); });
+  near = find_levels_beside(both.cloud, cfg, both.ws, both.wall, both.line, -0.06f, 0.01f);
+  assert_int_equal(near.count, 2);
+  assert_near(near.level_m[0], -0.022f, 0.0005f);
+  assert_near(near.level_m[1], -0.022f, 0.0005f);
+  // Outside the range looked in: nothing.
+  near = find_levels_beside(both.cloud, cfg, both.ws, both.wall, both.line, -0.015f, 0.01f);
+  assert_int_equal(near.count, 0);
+  // Nothing valid beside the bar, or an empty range: nothing, and no NaN.
+  const BesideFrame nothing([](float x) { return std::fabs(x) < 0.01f ? 0.078f : NAN; });
+  near =
+      find_levels_beside(nothing.cloud, cfg, nothing.ws, nothing.wall, nothing.line, -0.06f, 0.01f);
+  assert_int_equal(near.count, 0);
+  near = find_levels_beside(both.cloud, cfg, both.ws, both.wall, both.line, 0.01f, -0.06f);
+  assert_int_equal(near.count, 0);
+  near = find_levels_beside(both.cloud, cfg, both.ws, both.wall, both.line, NAN, 0.01f);
+  assert_int_equal(near.count, 0);
+}
+
+void test_the_mount_under_a_bar_beside_it(void**) {
+  const DetectorConfig cfg;
+  // The frame's surfaces: the dominant face and one 5 cm behind it; the
+  // bar's front 7.3 cm above the dominant plane fits neither (nor a track
+  // on either).
+  MountHypotheses m;
+  m.surface_count = 2;
+  m.surface_m[0] = 0.0f;
+  m.surface_m[1] = -0.05f;
+  const float front = -0.018f + 0.013f + kFront;
+  float mount = 99.0f;
+  assert_false(find_mount_under_bar(m, cfg, front, 0.004f, &mount));
+  // Beside it, a strip 1.8 cm behind the plane: the bar is on a seat track
+  // on that strip.
+  const float near_levels[1] = {-0.018f};
+  assert_true(find_mount_under_bar(m, cfg, front, 0.004f, &mount, near_levels, 1));
+  assert_near(mount, -0.018f + 0.013f, 1e-6f);
+  // A level beside it that is the dominant plane is still the flat-wall
+  // search's to judge.
+  const float plane_level[1] = {0.0f};
+  assert_false(find_mount_under_bar(m, cfg, kFront, 0.004f, &mount, plane_level, 1));
+}
+
 void test_bad_mount_and_type_settings_are_named(void**) {
   DetectorConfig cfg;
   cfg.max_mount_hypotheses = 0;
@@ -370,6 +424,8 @@ int main() {
       cmocka_unit_test(test_the_mount_under_a_bar),
       cmocka_unit_test(test_the_mount_shows_beside_a_handrail),
       cmocka_unit_test(test_no_mount_beside_is_no_handrail),
+      cmocka_unit_test(test_the_levels_beside_a_bar),
+      cmocka_unit_test(test_the_mount_under_a_bar_beside_it),
       cmocka_unit_test(test_shifted_pass_equals_a_full_pass),
       cmocka_unit_test(test_iss_lengths_are_matched_by_ratio),
       cmocka_unit_test(test_one_configured_length_without_types),

@@ -40,4 +40,23 @@ MountBeside measure_mount_beside(const OrganizedCloud& cloud, const DetectorConf
 // pixels in both bands to tell.
 bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
 
+// The surfaces right beside the bar, for the front-height test. The
+// surfaces in view (mount_surfaces.hpp) are the frame's histogram peaks,
+// measured from the dominant plane: a rack's 9 cm frame strip under the
+// track can hold too few pixels to make a peak of its own, or blur into the
+// panel a centimetre from it, and where that plane is tilted by a degree a
+// surface's distance from it changes by millimetres across the view. The
+// level beside the bar is measured where the bar is and is what it stands
+// on. Per side: the most populated level of the band's sampled pixels (2.5
+// mm bins, smoothed over three) between lo_m and hi_m from `wall`, the
+// mean of the pixels within 5 mm of it, when those are at least
+// mount_beside_min_fraction of that side's band and mount_beside_min_pixels.
+struct LevelsBeside {
+  std::uint32_t count = 0;
+  float level_m[2] = {0.0f, 0.0f};  // from `wall`, along its normal
+};
+LevelsBeside find_levels_beside(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                const Workspace& ws, const Plane& wall, const CenterLine& line,
+                                float lo_m, float hi_m);
+
 }  // namespace estimator

@@ -57,7 +57,11 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
 // from the plane, when the nearest of those is within tolerance_m and is
 // not the dominant plane itself (a bar on it is judged by the flat-wall
 // rules, with the dominant plane as the wall); false otherwise.
+// `near_levels` (count `near_count`, from the dominant plane) are surfaces
+// measured right beside the bar (mount_beside.hpp), judged like those in
+// view.
 bool find_mount_under_bar(const MountHypotheses& mounts, const DetectorConfig& cfg, float front_m,
-                          float tolerance_m, float* mount_m);
+                          float tolerance_m, float* mount_m, const float* near_levels = nullptr,
+                          std::uint32_t near_count = 0);
 
 }  // namespace estimator
