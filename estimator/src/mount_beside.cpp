@@ -10,26 +10,43 @@ namespace {
 // The pixels' noise widens the level's tolerance by twice its sigma, up to
 // this (at 1.5 m the depth renderer's sigma is near a centimetre).
 constexpr float kMaxNoiseWidening_m = 0.01f;
+
+// The band beside a bar: a pixel's side of the centre line (0 or 1, across
+// it in the wall's plane) when it lies along the line's visible extent and
+// mount_beside_min_m to mount_beside_max_m across; -1 otherwise.
+struct BandBeside {
+  const DetectorConfig& cfg;
+  const CenterLine& line;
+  Eigen::Vector3f across;
+  BandBeside(const DetectorConfig& c, const Plane& wall, const CenterLine& l)
+      : cfg(c), line(l), across(l.axis.cross(wall.normal)) {}
+  int side_of(const Eigen::Vector3f& p) const {
+    const Eigen::Vector3f r = p - line.point;
+    const float t = r.dot(line.axis);
+    if (t < line.t_min_m || t > line.t_max_m) return -1;
+    const float u = r.dot(across);
+    const float u_abs = std::fabs(u);
+    if (u_abs < cfg.mount_beside_min_m || u_abs > cfg.mount_beside_max_m) return -1;
+    return u > 0.0f ? 1 : 0;
+  }
+};
+
+Eigen::Vector3f position(const CloudPoint& q) {
+  return Eigen::Vector3f(q.x_m, q.y_m, q.z_m);
+}
 }  // namespace
 
 MountBeside measure_mount_beside(const OrganizedCloud& cloud, const DetectorConfig& cfg,
                                  const Workspace& ws, const Plane& wall, const CenterLine& line,
                                  float mount_above_wall_m) {
   MountBeside m;
-  const Eigen::Vector3f& n = wall.normal;
-  const Eigen::Vector3f& a = line.axis;
-  const Eigen::Vector3f across = a.cross(n);
+  const BandBeside band(cfg, wall, line);
   const float foot_m = mount_above_wall_m - cfg.mount_step_m;  // a seat track's foot
   for (std::int32_t i : ws.sample) {
     const CloudPoint& q = cloud.points[i];
-    const Eigen::Vector3f p(q.x_m, q.y_m, q.z_m);
-    const Eigen::Vector3f r = p - line.point;
-    const float t = r.dot(a);
-    if (t < line.t_min_m || t > line.t_max_m) continue;
-    const float u = r.dot(across);
-    const float u_abs = std::fabs(u);
-    if (u_abs < cfg.mount_beside_min_m || u_abs > cfg.mount_beside_max_m) continue;
-    const int side = u > 0.0f ? 1 : 0;
+    const Eigen::Vector3f p = position(q);
+    const int side = band.side_of(p);
+    if (side < 0) continue;
     ++m.band_pixels[side];
     const float noise = q.noise_m > 0.0f && q.noise_m < 0.05f ? q.noise_m : 0.0f;
     const float tolerance =
@@ -65,22 +82,14 @@ LevelsBeside find_levels_beside(const OrganizedCloud& cloud, const DetectorConfi
   if (!(hi_m > lo_m)) return out;
   const int bins = std::min(kBins, static_cast<int>(std::ceil((hi_m - lo_m) / kBin_m)));
   std::uint32_t hist[2][kBins] = {};
-  std::uint32_t band[2] = {0, 0};
-  const Eigen::Vector3f& n = wall.normal;
-  const Eigen::Vector3f& a = line.axis;
-  const Eigen::Vector3f across = a.cross(n);
+  std::uint32_t band_pixels[2] = {0, 0};
+  const BandBeside band(cfg, wall, line);
   // Two passes over the sample: the histogram, then the mean near its peak.
   for (std::int32_t i : ws.sample) {
-    const CloudPoint& q = cloud.points[i];
-    const Eigen::Vector3f p(q.x_m, q.y_m, q.z_m);
-    const Eigen::Vector3f r = p - line.point;
-    const float t = r.dot(a);
-    if (t < line.t_min_m || t > line.t_max_m) continue;
-    const float u = r.dot(across);
-    const float u_abs = std::fabs(u);
-    if (u_abs < cfg.mount_beside_min_m || u_abs > cfg.mount_beside_max_m) continue;
-    const int side = u > 0.0f ? 1 : 0;
-    ++band[side];
+    const Eigen::Vector3f p = position(cloud.points[i]);
+    const int side = band.side_of(p);
+    if (side < 0) continue;
+    ++band_pixels[side];
     const float x = (wall.signed_distance(p) - lo_m) / kBin_m;
     if (!(x >= 0.0f && x < static_cast<float>(bins))) continue;  // NaN too
     ++hist[side][static_cast<int>(x)];
@@ -88,7 +97,7 @@ LevelsBeside find_levels_beside(const OrganizedCloud& cloud, const DetectorConfi
   float peak_m[2] = {0.0f, 0.0f};
   bool have[2] = {false, false};
   for (int side = 0; side < 2; ++side) {
-    if (band[side] < cfg.mount_beside_min_pixels) continue;
+    if (band_pixels[side] < cfg.mount_beside_min_pixels) continue;
     std::uint32_t best = 0;
     int peak = -1;
     for (int b = 0; b < bins; ++b) {
@@ -107,16 +116,9 @@ LevelsBeside find_levels_beside(const OrganizedCloud& cloud, const DetectorConfi
   double sum[2] = {0.0, 0.0};
   std::uint32_t near[2] = {0, 0};
   for (std::int32_t i : ws.sample) {
-    const CloudPoint& q = cloud.points[i];
-    const Eigen::Vector3f p(q.x_m, q.y_m, q.z_m);
-    const Eigen::Vector3f r = p - line.point;
-    const float t = r.dot(a);
-    if (t < line.t_min_m || t > line.t_max_m) continue;
-    const float u = r.dot(across);
-    const float u_abs = std::fabs(u);
-    if (u_abs < cfg.mount_beside_min_m || u_abs > cfg.mount_beside_max_m) continue;
-    const int side = u > 0.0f ? 1 : 0;
-    if (!have[side]) continue;
+    const Eigen::Vector3f p = position(cloud.points[i]);
+    const int side = band.side_of(p);
+    if (side < 0 || !have[side]) continue;
     const float h = wall.signed_distance(p);
     if (std::fabs(h - peak_m[side]) <= kRefine_m) {
       sum[side] += h;
@@ -126,7 +128,7 @@ LevelsBeside find_levels_beside(const OrganizedCloud& cloud, const DetectorConfi
   for (int side = 0; side < 2; ++side) {
     if (!have[side] || near[side] < cfg.mount_beside_min_pixels) continue;
     if (static_cast<float>(near[side]) <
-        cfg.mount_beside_min_fraction * static_cast<float>(band[side])) {
+        cfg.mount_beside_min_fraction * static_cast<float>(band_pixels[side])) {
       continue;
     }
     out.level_m[out.count++] = static_cast<float>(sum[side] / near[side]);
