@@ -97,6 +97,13 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   return out;
 }
 
+namespace {
+// What the dominant plane's search seats a bar on besides the plane: only
+// the surfaces measured beside it, none of the frame's surface peaks.
+const MountHypotheses kNoSurfacesInView{};
+
+}  // namespace
+
 // The bar-front-height test, against the surfaces in view rather than the
 // one being searched: the search's mount only has to be near enough for the
 // bar's pixels to pass the windows of the tests before it, but its front
@@ -108,7 +115,12 @@ bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexLis
                                      CenterLine* line) const {
   if (strict_mount_) {
     line->mount_offset_m = search_mount_m_;
-    return bar_front_height_test(cfg_, *line);
+    if (bar_front_height_test(cfg_, *line)) return true;
+    // A bar the dominant plane's search found at another height may stand
+    // on a face beside the plane (a seat track on a deeper rack face, whose
+    // own search never passes the bar's front through the gap window). It
+    // is seated only on a surface measured right beside it, not on any
+    // surface in view: a cable over the plane has the plane beside it.
   }
   double noise_sum = 0.0;
   for (std::int32_t i : inliers) {
@@ -119,6 +131,10 @@ bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexLis
       inliers.empty() ? 0.0f : static_cast<float>(noise_sum / static_cast<double>(inliers.size()));
   const float tolerance =
       cfg_.front_height_tolerance_m + std::fmin(0.5f * mean_noise, kMaxNoiseWidening_m);
+  // Beside the plane, the height must tell a face from a seat track on it
+  // (a step of 1.3 cm): with the bar's pixels noisier than half the step
+  // (past about 1.2 m), its height says nothing of which it stands on.
+  if (strict_mount_ && mean_noise > 0.5f * cfg_.mount_step_m) return false;
   const float front_m = line->front_height_m + search_mount_m_;
   float mount_m = 0.0f;
   // The surfaces measured right beside the bar count as surfaces in view:
@@ -131,14 +147,22 @@ bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexLis
       cloud, cfg_, ws_, wall_, *line, expected_mount_m - cfg_.mount_step_m - 2.0f * tolerance,
       expected_mount_m + 2.0f * tolerance);
   float near_levels[2];
-  for (std::uint32_t k = 0; k < near.count; ++k) {
+  std::uint32_t near_count = 0;
+  for (std::uint32_t k = 0; k < near.count && k < 2; ++k) {
     // Neighbouring faces differ by a centimetre or more: a level nearer
     // the dominant plane than half that is the plane's own face, measured
-    // through noise, and a bar on it has had the flat-wall verdict.
-    const float level_m = near.level_m[k] + search_mount_m_;
-    near_levels[k] = std::fabs(level_m) < kSameFaceM ? 0.0f : level_m;
+    // through noise, and a bar on it has had the flat-wall verdict. In the
+    // plane's own search the plane's face seats nothing: a bar on a seat
+    // track on the plane is the search a step above it's to find.
+    float level_m = near.level_m[k] + search_mount_m_;
+    if (std::fabs(level_m) < kSameFaceM) {
+      if (strict_mount_) continue;
+      level_m = 0.0f;
+    }
+    near_levels[near_count++] = level_m;
   }
-  if (!find_mount_under_bar(mounts_, cfg_, front_m, tolerance, &mount_m, near_levels, near.count)) {
+  const MountHypotheses& in_view = strict_mount_ ? kNoSurfacesInView : mounts_;
+  if (!find_mount_under_bar(in_view, cfg_, front_m, tolerance, &mount_m, near_levels, near_count)) {
     return false;
   }
   line->point += (mount_m - search_mount_m_) * wall_.normal;
@@ -300,7 +324,14 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     if (attempt.status == DetectStatus::kFound && better_find(attempt, best)) {
       best = attempt;
       best_slot = slot;
-      if (attempt.inliers >= cfg_.mount_accept_inliers && along_gripper(attempt)) break;
+      // A bar the plane's search seated beside the plane (see
+      // seat_on_mount) does not end the search: the mounts' own searches
+      // may find one that stands on what they search.
+      const bool seated_beside = slot == kDominant && attempt.mount_offset_m != 0.0f;
+      if (attempt.inliers >= cfg_.mount_accept_inliers && along_gripper(attempt) &&
+          !seated_beside) {
+        break;
+      }
     }
     if (over_budget(start_us)) break;
   }
