@@ -202,7 +202,8 @@ void test_handrail_like_cable_is_refused_for_its_ramps(void**) {
 // window of that face's search, but short of a handrail's height above it.
 // No surface peak of the frame is the narrow face, so no other search
 // passes the bar's front. The plane's search seats it on the face measured
-// beside it, with a seat track (before: WRONG_HEIGHT in every frame).
+// beside it, with a seat track (the same layout as the development set's
+// rack approach, frame 10, where the detector before said WRONG_HEIGHT).
 void test_rail_on_a_face_beside_the_dominant_plane_is_seated_there(void**) {
   const std::string text = R"({
     "name": "rail-beside-the-dominant-face", "seed": 31, "frame_rate_hz": 5, "gripper_angle_deg": 90,
