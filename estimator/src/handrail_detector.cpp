@@ -153,7 +153,7 @@ bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexLis
     // the dominant plane than half that is the plane's own face, measured
     // through noise, and a bar on it has had the flat-wall verdict. In the
     // plane's own search the plane's face seats nothing: a bar on a seat
-    // track on the plane is the search a step above it's to find.
+    // track on the plane is for the search of the mount a step above it.
     float level_m = near.level_m[k] + search_mount_m_;
     if (std::fabs(level_m) < kSameFaceM) {
       if (strict_mount_) continue;
