@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
@@ -19,6 +20,9 @@ constexpr float kQuarterPi = 0.78539816f;
 constexpr float kMaxNoiseWidening_m = 0.006f;
 // Half the least depth step between neighbouring rack faces (1 cm).
 constexpr float kSameFaceM = 0.005f;
+// What the dominant plane's search seats a bar on besides the plane: only
+// the surfaces measured beside it, none of the frame's surface peaks.
+const MountHypotheses kNoSurfacesInView{};
 }  // namespace
 
 std::int64_t SteadyTimeSource::now_us() const {
@@ -97,13 +101,6 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   return out;
 }
 
-namespace {
-// What the dominant plane's search seats a bar on besides the plane: only
-// the surfaces measured beside it, none of the frame's surface peaks.
-const MountHypotheses kNoSurfacesInView{};
-
-}  // namespace
-
 // The bar-front-height test, against the surfaces in view rather than the
 // one being searched: the search's mount only has to be near enough for the
 // bar's pixels to pass the windows of the tests before it, but its front
@@ -146,9 +143,10 @@ bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexLis
   const LevelsBeside near = find_levels_beside(
       cloud, cfg_, ws_, wall_, *line, expected_mount_m - cfg_.mount_step_m - 2.0f * tolerance,
       expected_mount_m + 2.0f * tolerance);
-  float near_levels[2];
+  constexpr std::uint32_t kMaxNear = std::extent_v<decltype(LevelsBeside::level_m)>;
+  float near_levels[kMaxNear];
   std::uint32_t near_count = 0;
-  for (std::uint32_t k = 0; k < near.count && k < 2; ++k) {
+  for (std::uint32_t k = 0; k < near.count && k < kMaxNear; ++k) {
     // Neighbouring faces differ by a centimetre or more: a level nearer
     // the dominant plane than half that is the plane's own face, measured
     // through noise, and a bar on it has had the flat-wall verdict. In the
