@@ -16,6 +16,10 @@
 namespace estimator {
 namespace {
 constexpr float kQuarterPi = 0.78539816f;
+// A frame's random stream: the configured seed and the frame id.
+std::uint64_t frame_seed(std::uint64_t seed, std::uint64_t frame_id) {
+  return seed ^ (frame_id * 0x9e3779b97f4a7c15ull);
+}
 // The most the pixels' noise widens the front-height test.
 constexpr float kMaxNoiseWidening_m = 0.006f;
 // Half the least depth step between neighbouring rack faces (1 cm).
@@ -72,7 +76,7 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
     out.status = DetectStatus::kEmptyFrame;
   } else {
     // Seeded from the frame id: a frame always gives the same answer.
-    rng_.reseed(cfg_.seed ^ (cloud.frame_id * 0x9e3779b97f4a7c15ull));
+    rng_.reseed(frame_seed(cfg_.seed, cloud.frame_id));
     // Emptiness is judged on the lattice sample: a frame with fewer than
     // three usable pixels in it has no wall to find.
     out.counts.valid = static_cast<std::uint32_t>(sample_valid_points(cloud, cfg_, ws_));
@@ -303,12 +307,12 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     HandrailDetection attempt = *out;
     if (slot == kDominant) {
       strict_mount_ = true;
-      search_mount(cloud, plane.plane, 0.0f, !dominant_pass_fresh, start_us, &attempt);
+      search_mount(cloud, plane.plane, kDominant, 0.0f, !dominant_pass_fresh, start_us, &attempt);
       flat = attempt;
       have_flat = true;
     } else {
       strict_mount_ = false;
-      search_mount(cloud, plane.plane, mounts_.offset_m[slot], true, start_us, &attempt);
+      search_mount(cloud, plane.plane, slot, mounts_.offset_m[slot], true, start_us, &attempt);
     }
     dominant_pass_fresh = false;
     ++tried;
@@ -339,8 +343,8 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     if (cfg_.workspace_shows_result && best_slot != last_slot) {
       strict_mount_ = best_slot == kDominant;
       HandrailDetection again = *out;
-      search_mount(cloud, plane.plane, strict_mount_ ? 0.0f : mounts_.offset_m[best_slot], true,
-                   start_us, &again);
+      search_mount(cloud, plane.plane, best_slot,
+                   strict_mount_ ? 0.0f : mounts_.offset_m[best_slot], true, start_us, &again);
     }
     *out = best;
   } else {
@@ -350,8 +354,9 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
 }
 
 void HandrailDetector::search_mount(const OrganizedCloud& cloud, const Plane& dominant,
-                                    float offset_m, bool run_gap_pass, std::int64_t start_us,
-                                    HandrailDetection* out) {
+                                    std::uint32_t slot, float offset_m, bool run_gap_pass,
+                                    std::int64_t start_us, HandrailDetection* out) {
+  rng_.reseed(frame_seed(cfg_.seed, cloud.frame_id) ^ ((slot + 1ull) * 0xbf58476d1ce4e5b9ull));
   out->mount_offset_m = offset_m;
   search_mount_m_ = offset_m;
   wall_ = dominant;

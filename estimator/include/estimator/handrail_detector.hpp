@@ -53,9 +53,13 @@ class HandrailDetector {
   void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
   // The search on the mount offset_m from the dominant plane: wall_ set to
   // it, the gap distance pass against it (unless the workspace already
-  // holds it), then search_on_mount().
-  void search_mount(const OrganizedCloud& cloud, const Plane& dominant, float offset_m,
-                    bool run_gap_pass, std::int64_t start_us, HandrailDetection* out);
+  // holds it), then search_on_mount(). Its random draws come from a stream
+  // of its own, seeded from the frame and `slot` (the mount's, or
+  // kMaxMountHypotheses for the plane), so no search's result depends on
+  // what the searches before it drew, and a search run again repeats.
+  void search_mount(const OrganizedCloud& cloud, const Plane& dominant, std::uint32_t slot,
+                    float offset_m, bool run_gap_pass, std::int64_t start_us,
+                    HandrailDetection* out);
   // The paper's tests and line search against the current wall_ (one mount
   // surface), after the gap distance pass has run against it.
   void search_on_mount(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
