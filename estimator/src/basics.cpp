@@ -174,6 +174,7 @@ Workspace::Workspace(std::size_t n)
       column_run_last(new std::int32_t[kMaxWidth]),
       column_run_width_m(new float[kMaxWidth]),
       column_run_peak_m(new float[kMaxWidth]),
+      column_run_base_m(new float[kMaxWidth]),
       score_x_m(new float[kMaxScoreSamples]),
       score_y_m(new float[kMaxScoreSamples]),
       score_z_m(new float[kMaxScoreSamples]),
@@ -184,7 +185,7 @@ Workspace::Workspace(std::size_t n)
 std::size_t Workspace::bytes() const {
   return max_pixels * (sizeof(float) * 7 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
          3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
-         sizeof(std::int32_t) * kMaxRefitSamples + 4 * 4 * kMaxWidth;
+         sizeof(std::int32_t) * kMaxRefitSamples + 5 * 4 * kMaxWidth;
 }
 
 }  // namespace estimator

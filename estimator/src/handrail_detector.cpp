@@ -368,7 +368,10 @@ void HandrailDetector::search_mount(const OrganizedCloud& cloud, const Plane& do
 void HandrailDetector::search_on_mount(const OrganizedCloud& cloud, std::int64_t start_us,
                                        HandrailDetection* out) {
   cross_point_test(cloud, cfg_, wall_, scale_, ws_);
-  side_width_test(cloud, cfg_, scale_, ws_);
+  // The dominant plane's search seats a bar beside the plane (seat_on_mount),
+  // so its candidates may stand on a deeper face.
+  side_width_test(cloud, cfg_, scale_, ws_,
+                  strict_mount_ ? FrontFace::kOnSearchedOrDeeper : FrontFace::kOnSearchedSurface);
   out->counts.gap = static_cast<std::uint32_t>(ws_.gap.size());
   out->counts.cross = static_cast<std::uint32_t>(ws_.cross.size());
   out->counts.side = static_cast<std::uint32_t>(ws_.side.size());

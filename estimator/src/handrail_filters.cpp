@@ -65,9 +65,25 @@ bool probe_on_wall(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, in
 struct RaisedRun {
   float width_m = -1.0f;  // < 0: the run leaves the image, width unknown
   float peak_m = 0.0f;    // its highest point's distance from the wall
-  int first = 0;          // its first and last pixel along the walk
+  // The surface it stands out from: the higher of the two levels just
+  // outside its ends (NaN: neither side shows one).
+  float base_m = NAN;
+  int first = 0;  // its first and last pixel along the walk
   int last = -1;
 };
+
+// The level beside a run's end: the first valid pixel 2 to 4 pixels out
+// (the one right beside it often mixes the run's return with the
+// surface's); NaN if none is in the image and valid.
+float level_beside_end(const float* distance_m, int stride, int n, int end, int step) {
+  for (int k = 2; k <= 4; ++k) {
+    const int j = end + step * k;
+    if (j < 0 || j >= n) break;
+    const float s = distance_m[j * stride];
+    if (s > -INFINITY) return s;
+  }
+  return NAN;
+}
 
 // An invalid pixel's wall distance is -infinity: one load and one
 // comparison judge it.
@@ -104,6 +120,9 @@ RaisedRun measure_raised_run(const OrganizedCloud& cloud, const Workspace& ws, s
     ++run.last;
   }
   if (run.first == 0 || run.last == n - 1) return run;
+  // fmax of NaN and a number is the number: one side's level will do.
+  run.base_m = std::fmax(level_beside_end(distance_m, stride, n, run.first, -1),
+                         level_beside_end(distance_m, stride, n, run.last, 1));
   const CloudPoint& a = cloud.points[base + run.first * stride];
   const CloudPoint& b = cloud.points[base + run.last * stride];
   const float dx = a.x_m - b.x_m, dy = a.y_m - b.y_m, dz = a.z_m - b.z_m;
@@ -143,14 +162,15 @@ class RunCache {
     }
     return row_run_;
   }
-  // Width and peak of the column run through q.
-  void column(Pixel q, float* width_m, float* peak_m) {
+  // Width, peak and base of the column run through q.
+  void column(Pixel q, float* width_m, float* peak_m, float* base_m) {
     const int c = q.col;
     if (!is_raised(ws_, q.row * w_ + c, raised_min_)) {
       const RaisedRun run =
           measure_raised_run(cloud_, ws_, c, w_, rows_, q.row, raised_min_, inv_fy_);
       *width_m = run.width_m;
       *peak_m = run.peak_m;
+      *base_m = run.base_m;
       return;
     }
     if (q.row < ws_.column_run_first[c] || q.row > ws_.column_run_last[c]) {
@@ -160,9 +180,11 @@ class RunCache {
       ws_.column_run_last[c] = run.last;
       ws_.column_run_width_m[c] = run.width_m;
       ws_.column_run_peak_m[c] = run.peak_m;
+      ws_.column_run_base_m[c] = run.base_m;
     }
     *width_m = ws_.column_run_width_m[c];
     *peak_m = ws_.column_run_peak_m[c];
+    *base_m = ws_.column_run_base_m[c];
   }
 
  private:
@@ -216,8 +238,8 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
     bool y_ok = probe_on_wall(cloud, ws, q, 1, 0, round_to_int(fy_plus * inv_z)) &&
                 probe_on_wall(cloud, ws, q, -1, 0, round_to_int(fy_minus * inv_z));
     if (y_ok) {
-      float column_width = 0.0f, column_peak = 0.0f;
-      runs.column(q, &column_width, &column_peak);
+      float column_width = 0.0f, column_peak = 0.0f, column_base = 0.0f;
+      runs.column(q, &column_width, &column_peak, &column_base);
       y_ok = plausible(column_width);
     }
     if (x_ok) ws.flags[i] |= kFlagCrossX;
@@ -227,7 +249,7 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
 }
 
 void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                     const PixelScale& scale, Workspace& ws) {
+                     const PixelScale& scale, Workspace& ws, FrontFace front_face) {
   const HandrailGeometry& h = cfg.handrail;
   const float width_min = cfg.side_width_min_ratio * h.bar_width_m;
   const float width_max = cfg.side_width_max_ratio * std::fmax(h.bar_width_m, h.bar_depth_m);
@@ -242,19 +264,33 @@ void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
     // lifts the highest of a few samples, hence the pixel's sigma.
     const float peak_tolerance =
         cfg.run_peak_tolerance_m + 2.0f * clamp_noise(cloud.points[i].noise_m);
-    auto passes = [&](float width_m, float peak_m) {
-      return width_m > width_min && width_m < width_max &&
-             std::fabs(peak_m - front) < peak_tolerance;
+    // A bar on a deeper face has its front lower by that face's depth, and
+    // that face (or the seat track on it) is beside it: its front stands a
+    // handrail's height above what it stands out from. A cable as low over
+    // the searched surface has that surface beside it. The face must be
+    // deeper than the window above allows for (a bar on a face up to about
+    // a centimetre deeper passes it already), so that noise on the surface
+    // beside the run does not make one.
+    auto front_passes = [&](float peak_m, float base_m) {
+      if (std::fabs(peak_m - front) < peak_tolerance) return true;
+      if (front_face != FrontFace::kOnSearchedOrDeeper || !(base_m < -peak_tolerance)) {
+        return false;
+      }
+      const float rise_m = peak_m - base_m;
+      return rise_m > front - peak_tolerance && rise_m < front + cfg.mount_step_m + peak_tolerance;
+    };
+    auto passes = [&](float width_m, float peak_m, float base_m) {
+      return width_m > width_min && width_m < width_max && front_passes(peak_m, base_m);
     };
     bool pass = false;
     if (ws.flags[i] & kFlagCrossX) {
       const RaisedRun& run = runs.row(q);
-      pass = passes(run.width_m, run.peak_m);
+      pass = passes(run.width_m, run.peak_m, run.base_m);
     }
     if (!pass && (ws.flags[i] & kFlagCrossY)) {
-      float width = 0.0f, peak = 0.0f;
-      runs.column(q, &width, &peak);
-      pass = passes(width, peak);
+      float width = 0.0f, peak = 0.0f, base = 0.0f;
+      runs.column(q, &width, &peak, &base);
+      pass = passes(width, peak, base);
     }
     if (pass) {
       ws.flags[i] |= kFlagSide;

@@ -236,6 +236,54 @@ void test_filters_keep_the_bar_and_drop_a_thin_cable(void**) {
   assert_true(ws.side.size() > 100);
 }
 
+// The side width test's front-face window. A bar standing 2 cm lower than
+// a handrail's height above the wall is a handrail only on a face 2 cm
+// deeper, shown beside it (here a 12 cm band of the wall behind the bar,
+// pushed back): it passes only where the search allows deeper faces. Over
+// the wall itself it is a cable, refused either way; a bar 1.5 cm higher
+// is refused either way.
+std::size_t side_pixels(double offset_m, double band_behind_m, FrontFace front_face) {
+  SyntheticScene s;
+  s.cylinders.push_back(testing_support::vertical_bar(kWall, offset_m, 0.3));
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(s, &pts);
+  for (CloudPoint& p : pts) {
+    // Wall points of the band move back along their rays.
+    if (std::fabs(p.z_m - kWall) > 1e-4 || std::fabs(p.x_m) > 0.06) continue;
+    const float scale = static_cast<float>((kWall + band_behind_m) / kWall);
+    p.x_m *= scale;
+    p.y_m *= scale;
+    p.z_m *= scale;
+  }
+  const DetectorConfig cfg = test_config();
+  Workspace ws(cloud.size());
+  assert_true(sample_valid_points(cloud, cfg, ws) > 1000);
+  Random rng(7);
+  const PixelScale scale = estimate_pixel_scale(cloud, ws.sample);
+  const PlaneEstimate plane = estimate_plane(cloud, cfg, rng, ws);
+  assert_true(plane.found);
+  assert_true(std::fabs(plane.plane.signed_distance(Eigen::Vector3f(0, 0, kWall))) < 0.002f);
+  std::uint32_t valid_pixels = 0;
+  assert_true(gap_distance_test(cloud, cfg, plane.plane, ws, &valid_pixels) > 0);
+  cross_point_test(cloud, cfg, plane.plane, scale, ws);
+  assert_true(ws.cross.size() > 50);  // the window below is the side test's own
+  side_width_test(cloud, cfg, scale, ws, front_face);
+  return ws.side.size();
+}
+
+void test_side_width_front_window_allows_deeper_faces_only_when_asked(void**) {
+  constexpr FrontFace kSearched = FrontFace::kOnSearchedSurface;
+  constexpr FrontFace kDeeper = FrontFace::kOnSearchedOrDeeper;
+  assert_true(side_pixels(kOffset, 0.0, kSearched) > 100);
+  assert_true(side_pixels(kOffset, 0.0, kDeeper) > 100);
+  assert_int_equal(side_pixels(kOffset - 0.02, 0.02, kSearched), 0);
+  assert_true(side_pixels(kOffset - 0.02, 0.02, kDeeper) > 100);
+  assert_int_equal(side_pixels(kOffset - 0.02, 0.0, kSearched), 0);
+  assert_int_equal(side_pixels(kOffset - 0.02, 0.0, kDeeper), 0);
+  assert_int_equal(side_pixels(kOffset + 0.015, 0.0, kSearched), 0);
+  assert_int_equal(side_pixels(kOffset + 0.015, 0.0, kDeeper), 0);
+}
+
 void test_candidates_cluster_and_select(void**) {
   SyntheticScene s = bar_scene();
   std::vector<CloudPoint> pts;
@@ -371,6 +419,7 @@ int main() {
       cmocka_unit_test(test_plane_fails_without_support),
       cmocka_unit_test(test_fit_plane_orients_toward_camera),
       cmocka_unit_test(test_filters_keep_the_bar_and_drop_a_thin_cable),
+      cmocka_unit_test(test_side_width_front_window_allows_deeper_faces_only_when_asked),
       cmocka_unit_test(test_candidates_cluster_and_select),
       cmocka_unit_test(test_cluster_splits_at_gaps),
       cmocka_unit_test(test_handrail_frame_is_eq5),

@@ -37,11 +37,20 @@ void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws);
 void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
                       const PixelScale& scale, Workspace& ws);
 
+// Where the side width test expects a bar's front face: a bar's height
+// above the surface searched, or also a bar's height above a deeper face
+// shown right beside the run (a bar standing on a face behind the one
+// searched; the line's own height test seats it later, seat_on_mount).
+enum class FrontFace { kOnSearchedSurface, kOnSearchedOrDeeper };
+
 // Side width test (eq. 4): along each direction that passed the cross test,
 // the raised run through the pixel must be as wide as the bar, and (our
-// addition) its highest point must be at the bar's front-face height.
-// ws.cross -> ws.side.
+// addition) its highest point must be at the bar's front-face height above
+// the searched surface or, with kOnSearchedOrDeeper, above the level just
+// beyond the run's ends where that level is deeper than the searched
+// surface's window. ws.cross -> ws.side.
 void side_width_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                     const PixelScale& scale, Workspace& ws);
+                     const PixelScale& scale, Workspace& ws,
+                     FrontFace front_face = FrontFace::kOnSearchedSurface);
 
 }  // namespace estimator

@@ -83,6 +83,7 @@ struct Workspace {
   std::unique_ptr<std::int32_t[]> column_run_last;
   std::unique_ptr<float[]> column_run_width_m;
   std::unique_ptr<float[]> column_run_peak_m;
+  std::unique_ptr<float[]> column_run_base_m;
   // Contiguous copies of the RANSAC subsamples ((x, y, z), or (u, v) in the
   // wall plane), so that scoring a hypothesis streams through memory
   // instead of hopping through the cloud.
