@@ -77,6 +77,9 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   } else {
     // Seeded from the frame id: a frame always gives the same answer.
     rng_.reseed(frame_seed(cfg_.seed, cloud.frame_id));
+    // No earlier frame's surfaces in the diagnostics.
+    mounts_ = MountHypotheses{};
+    dominant_ = Plane{};
     // Emptiness is judged on the lattice sample: a frame with fewer than
     // three usable pixels in it has no wall to find.
     out.counts.valid = static_cast<std::uint32_t>(sample_valid_points(cloud, cfg_, ws_));
@@ -267,6 +270,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   // The distances to the dominant plane, for every pixel, and the mounts
   // they show.
   wall_ = plane.plane;
+  dominant_ = plane.plane;
   out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
   keep_plane_pass(cloud, ws_);
   mounts_ = find_mount_hypotheses(cloud, cfg_, ws_);

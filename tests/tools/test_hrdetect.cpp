@@ -129,6 +129,22 @@ void test_results_that_cannot_be_written_are_an_error(void**) {
   assert_int_equal(r.json_lines, 1);
 }
 
+// --mounts adds the dominant plane (a wall 0.6 m away) and the surfaces
+// measured from it to each line, which still ends as one JSON object.
+void test_mounts_are_reported_when_asked(void**) {
+  Result r = run({kGood});
+  assert_int_equal(r.exit_status, 0);
+  assert_true(r.out.find("mount_search") == std::string::npos);
+  r = run({"--mounts", kGood});
+  assert_int_equal(r.exit_status, 0);
+  assert_int_equal(r.json_lines, 1);
+  expect_in(r, ",\"mount_search\":{\"plane\":{\"normal\":[");
+  expect_in(r, "\"d_m\":0.");
+  expect_in(r, "\"surfaces_m\":[");
+  expect_in(r, "\"plane_front_pixels\":");
+  assert_true(r.out.find("}}\n") != std::string::npos);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -146,6 +162,7 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_a_header_claiming_a_huge_frame_is_refused_before_allocating),
       cmocka_unit_test(test_an_empty_folder_is_an_error),
       cmocka_unit_test(test_results_that_cannot_be_written_are_an_error),
+      cmocka_unit_test(test_mounts_are_reported_when_asked),
   };
   const int failed = cmocka_run_group_tests(tests, nullptr, nullptr);
   const std::string cleanup = "rm -rf '" + g_dir + "'";

@@ -103,6 +103,33 @@ void test_detection_json(void**) {
                       "\"iss_type\":\"21.5 in\"") != std::string::npos);
 }
 
+// hrdetect --mounts: the dominant plane and the surfaces and mounts
+// measured from it, only as many as were found.
+void test_mounts_json(void**) {
+  estimator::Plane plane;
+  plane.normal = Eigen::Vector3f(0.0f, 0.6f, -0.8f);
+  plane.d = 0.6125f;
+  estimator::MountHypotheses m;
+  m.surface_count = 2;
+  m.surface_m[0] = -0.0203f;
+  m.surface_m[1] = 0.0017f;
+  m.surface_m[2] = 0.5f;  // not found: not written
+  m.count = 1;
+  m.offset_m[0] = 0.0147f;
+  m.front_pixels[0] = 296;
+  m.dominant_front_pixels = 2;
+  assert_string_equal(tools::mounts_to_json(plane, m).c_str(),
+                      "{\"plane\":{\"normal\":[0.00000,0.60000,-0.80000],\"d_m\":0.6125},"
+                      "\"surfaces_m\":[-0.0203,0.0017],\"offsets_m\":[0.0147],"
+                      "\"front_pixels\":[296],\"plane_front_pixels\":2}");
+  // None found (a frame without a plane): empty lists.
+  assert_string_equal(
+      tools::mounts_to_json(estimator::Plane{}, estimator::MountHypotheses{}).c_str(),
+      "{\"plane\":{\"normal\":[0.00000,0.00000,0.00000],\"d_m\":0.0000},"
+      "\"surfaces_m\":[],\"offsets_m\":[],\"front_pixels\":[],"
+      "\"plane_front_pixels\":0}");
+}
+
 void test_image_text_and_png(void**) {
   tools::Image img(40, 12);
   img.text(1, 1, "OK 1", {255, 255, 255});
@@ -121,6 +148,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_config_file),
       cmocka_unit_test(test_detection_json),
+      cmocka_unit_test(test_mounts_json),
       cmocka_unit_test(test_image_text_and_png),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -1,5 +1,6 @@
 #include "detection_json.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace tools {
@@ -71,6 +72,31 @@ std::string detection_to_json(const std::string& frame, const estimator::Handrai
   s += ",\"mounts\":{\"found\":" + std::to_string(d.counts.mount_hypotheses) +
        ",\"tried\":" + std::to_string(d.counts.mounts_tried) + "}";
   s += ",\"time_ms\":" + std::string(time_ms) + "}";
+  return s;
+}
+
+std::string mounts_to_json(const estimator::Plane& dominant, const estimator::MountHypotheses& m) {
+  auto metres = [](const float* v, std::uint32_t n) {
+    std::string s = "[";
+    for (std::uint32_t k = 0; k < n; ++k) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%s%.4f", k ? "," : "", v[k]);
+      s += buf;
+    }
+    return s + "]";
+  };
+  const std::uint32_t surfaces = std::min(m.surface_count, estimator::kMaxSurfacePeaks);
+  const std::uint32_t mounts = std::min(m.count, estimator::kMaxMountHypotheses);
+  char d_m[32];
+  std::snprintf(d_m, sizeof d_m, "%.4f", dominant.d);
+  std::string s = "{\"plane\":{\"normal\":" + vec(dominant.normal) + ",\"d_m\":" + d_m + "}";
+  s += ",\"surfaces_m\":" + metres(m.surface_m, surfaces);
+  s += ",\"offsets_m\":" + metres(m.offset_m, mounts);
+  s += ",\"front_pixels\":[";
+  for (std::uint32_t k = 0; k < mounts; ++k) {
+    s += (k ? "," : "") + std::to_string(m.front_pixels[k]);
+  }
+  s += "],\"plane_front_pixels\":" + std::to_string(m.dominant_front_pixels) + "}";
   return s;
 }
 

@@ -2,12 +2,20 @@
 #include <string>
 
 #include "estimator/handrail_tracker.hpp"
+#include "estimator/mount_surfaces.hpp"
 #include "estimator/types.hpp"
 
 namespace tools {
 
 // One line of hrdetect's output (see tools/README.md for the fields).
 std::string detection_to_json(const std::string& frame, const estimator::HandrailDetection& d);
+
+// The surfaces in view and the mounts the detector searched on the last
+// frame (hrdetect --mounts): {"plane": {"normal": [...], "d_m": d},
+// "surfaces_m": [...], "offsets_m": [...], "front_pixels": [...],
+// "plane_front_pixels": n}, distances from the dominant plane along its
+// normal (toward the camera), metres.
+std::string mounts_to_json(const estimator::Plane& dominant, const estimator::MountHypotheses& m);
 
 // The tracker's state: {"event": ..., "position": [...], "axis": [...],
 // "normal": [...], "target_position": [...]} in the world frame, or

@@ -38,6 +38,9 @@ void usage(FILE* out) {
                "                           the given order: track the handrail over them (the\n"
                "                           paper's Tr1..Tr3 and an outlier gate) and add a\n"
                "                           \"track\" object to each line\n"
+               "  --mounts                 add a \"mount_search\" object to each line: the\n"
+               "                           surfaces in view and the mounts searched, as\n"
+               "                           distances from the dominant plane (tools/README.md)\n"
                "  -h, --help               this text\n\n"
                "exit status: 0 when every file was read, 1 when any file could not be\n"
                "(the others are still processed), 2 for bad options.\n");
@@ -172,7 +175,7 @@ int main(int argc, char** argv) {
   estimator::Method method = estimator::Method::kProposed;
   std::string config_path, debug_dir, handrail = "iss";
   double gripper_deg = 0.0;
-  bool gripper_given = false, sequence = false;
+  bool gripper_given = false, sequence = false, show_mounts = false;
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -217,6 +220,8 @@ int main(int argc, char** argv) {
       config_path = next("--config");
     } else if (a == "--sequence") {
       sequence = true;
+    } else if (a == "--mounts") {
+      show_mounts = true;
     } else if (a == "--debug-png") {
       debug_dir = next("--debug-png");
     } else if (!a.empty() && a[0] == '-') {
@@ -276,6 +281,11 @@ int main(int argc, char** argv) {
     const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
     const estimator::HandrailDetection d = detector.detect(cloud, method);
     std::string line = tools::detection_to_json(file, d);
+    if (show_mounts) {
+      line.pop_back();  // the closing brace
+      line += ",\"mount_search\":" +
+              tools::mounts_to_json(detector.last_dominant_plane(), detector.last_mounts()) + "}";
+    }
     if (sequence) {
       line.pop_back();  // the closing brace
       line += ",\"track\":" + tools::track_to_json(tracker.update(d, still, still)) + "}";

@@ -46,6 +46,11 @@ class HandrailDetector {
   // The last frame's per-pixel flags and sets, for debug images.
   const Workspace& workspace() const { return ws_; }
   const Plane& last_wall() const { return wall_; }
+  // The last frame's surfaces in view and mounts (none when it had no
+  // plane), for diagnostics.
+  const MountHypotheses& last_mounts() const { return mounts_; }
+  // ... and the dominant plane they are measured from (zero normal: none).
+  const Plane& last_dominant_plane() const { return dominant_; }
 
  private:
   bool over_budget(std::int64_t start_us) const;
@@ -87,6 +92,7 @@ class HandrailDetector {
   Workspace ws_;
   Random rng_;
   Plane wall_;  // the mount being searched (the dominant plane, shifted)
+  Plane dominant_;
   PixelScale scale_;
   MountHypotheses mounts_;       // of the current frame
   float search_mount_m_ = 0.0f;  // wall_'s offset from the dominant plane
