@@ -162,15 +162,15 @@ class RunCache {
     }
     return row_run_;
   }
-  // Width, peak and base of the column run through q.
-  void column(Pixel q, float* width_m, float* peak_m, float* base_m) {
+  // Width, peak and (when asked) base of the column run through q.
+  void column(Pixel q, float* width_m, float* peak_m, float* base_m = nullptr) {
     const int c = q.col;
     if (!is_raised(ws_, q.row * w_ + c, raised_min_)) {
       const RaisedRun run =
           measure_raised_run(cloud_, ws_, c, w_, rows_, q.row, raised_min_, inv_fy_);
       *width_m = run.width_m;
       *peak_m = run.peak_m;
-      *base_m = run.base_m;
+      if (base_m) *base_m = run.base_m;
       return;
     }
     if (q.row < ws_.column_run_first[c] || q.row > ws_.column_run_last[c]) {
@@ -184,7 +184,7 @@ class RunCache {
     }
     *width_m = ws_.column_run_width_m[c];
     *peak_m = ws_.column_run_peak_m[c];
-    *base_m = ws_.column_run_base_m[c];
+    if (base_m) *base_m = ws_.column_run_base_m[c];
   }
 
  private:
@@ -238,8 +238,8 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
     bool y_ok = probe_on_wall(cloud, ws, q, 1, 0, round_to_int(fy_plus * inv_z)) &&
                 probe_on_wall(cloud, ws, q, -1, 0, round_to_int(fy_minus * inv_z));
     if (y_ok) {
-      float column_width = 0.0f, column_peak = 0.0f, column_base = 0.0f;
-      runs.column(q, &column_width, &column_peak, &column_base);
+      float column_width = 0.0f, column_peak = 0.0f;
+      runs.column(q, &column_width, &column_peak);
       y_ok = plausible(column_width);
     }
     if (x_ok) ws.flags[i] |= kFlagCrossX;
