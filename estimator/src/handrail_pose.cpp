@@ -276,10 +276,22 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     const Eigen::Vector2f side(-step.y(), step.x());
     int invalid_run = 0, past_bar = 0;
     float t_bar = t_inner;
+    // The farthest raised pixel (above the wall's tolerance, below what
+    // would hide the end) before the walk meets the wall. The low half of
+    // a cable's ramp lies under the gap window's floor, where t_bar does
+    // not see it; a handrail's leg stands flush with the bar's end, so its
+    // raised structure ends with the bar. Raised counts from the surface
+    // the bar was seated on: a seat track runs on past a handrail's end at
+    // that surface's level.
+    float t_raised = t_inner;
+    bool raised_runs_on = true;
+    const float raised_min_m =
+        std::fmax(cfg.wall_tolerance_m, front_level_m - line.front_height_m + cfg.wall_tolerance_m);
     Eigen::Vector2f centre = start;
     for (int k = 1; k <= max_steps && past_bar <= max_past_bar; ++k) {
       centre += step;
-      bool any_valid = false, on_bar = false, in_front = false, all_wall = true;
+      bool any_valid = false, on_bar = false, in_front = false, all_wall = true,
+           raised_here = false;
       float across_sum = 0.0f;
       int across_n = 0;
       for (int j = -2; j <= 2; ++j) {
@@ -299,6 +311,11 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
         any_valid = true;
         const float s = ws.signed_distance_m[i];
         if (s >= cfg.wall_tolerance_m) all_wall = false;
+        if (s >= raised_min_m && s <= hi + 0.02f && raised_runs_on) {
+          raised_here = true;
+          const float t = (point_of(cloud, i) - line.point).dot(line.axis);
+          t_raised = end == 0 ? std::min(t_raised, t) : std::max(t_raised, t);
+        }
         if (s > hi + 0.02f) in_front = true;
         if (s >= lo && s <= hi + 0.02f) {
           on_bar = true;
@@ -317,6 +334,10 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
         continue;
       }
       invalid_run = 0;
+      // Only raised structure that runs on step by step from the bar
+      // counts: a step whose valid pixels all lie low ends it, so dropouts
+      // and noise farther on along a seat track do not.
+      raised_runs_on = raised_runs_on && raised_here;
       if (all_wall && !on_bar) {
         end_seen[end] = true;
         break;
@@ -331,7 +352,7 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
       past_bar = on_bar ? 0 : past_bar + 1;
     }
     end_t_m[end] = t_bar;
-    if (end_drop_m != nullptr) end_drop_m[end] = std::fabs(t_bar - t_front);
+    if (end_drop_m != nullptr) end_drop_m[end] = std::fabs(t_raised - t_front);
   }
 }
 

@@ -118,7 +118,8 @@ struct DetectorConfig {
 
   // End detection: how far past the bar's last pixel to look for the wall.
   float end_search_m = 0.10f;
-  // A seen end's drop (detect_ends): how far raised structure runs on past
+  // A seen end's drop (detect_ends): how far raised structure (2 cm or
+  // more above the surface the bar is seated on) runs on, unbroken, past
   // the last pixel at the bar's front height. At a handrail's end the only
   // such structure is its leg, about 4.5 cm along the rail (the ISS meshes),
   // and seen from the side the leg's face shows below the front over that

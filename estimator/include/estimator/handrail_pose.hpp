@@ -49,11 +49,13 @@ bool bar_front_height_test(const DetectorConfig& cfg, const CenterLine& line);
 // when the walk leaves the bar and meets the wall; it is not seen when the
 // walk leaves the image, meets invalid pixels or something in front.
 // end_t_m receives the bar's extent along the axis at seen ends. With
-// end_drop_m, each end's drop: how far along the axis the raised structure
-// runs on past the last pixel at the bar's front height (front_level_m, in
-// the distances of ws.signed_distance_m). A handrail's front holds to its
-// leg, so its drop is at most the leg's length; a cable that reaches a
-// handrail's height comes down to the surface in a ramp.
+// end_drop_m, each end's drop: how far along the axis raised structure
+// (the wall's tolerance or more above the surface the bar is seated on)
+// runs on, step by step, past the last pixel at the bar's front height
+// (front_level_m, in the distances of ws.signed_distance_m). A handrail's
+// front holds to its leg, so its drop is at most the leg's length; a cable
+// that reaches a handrail's height comes down to the surface in a ramp,
+// whose low part, under the gap window, counts too.
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
                  bool end_seen[2], float end_t_m[2], float end_drop_m[2] = nullptr,
