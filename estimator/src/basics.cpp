@@ -59,6 +59,10 @@ const char* validate(const DetectorConfig& c) {
   if (!(c.beam_length_min_ratio > 0.0f && c.beam_length_max_ratio > c.beam_length_min_ratio))
     return "beam_length_max_ratio";
   if (!(c.end_search_m > 0.0f)) return "end_search_m";
+  if (!(c.min_visible_length_m > 0.0f)) return "min_visible_length_m";
+  if (!(c.min_visible_fraction > 0.0f && c.min_visible_fraction <= 1.0f)) {
+    return "min_visible_fraction";
+  }
   if (!(c.end_drop_max_m > 0.0f)) return "end_drop_max_m";
   if (!(c.front_height_tolerance_m > 0.0f)) return "front_height_tolerance_m";
   if (c.mount_accept_inliers == 0) return "mount_accept_inliers";

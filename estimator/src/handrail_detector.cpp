@@ -16,6 +16,8 @@
 namespace estimator {
 namespace {
 constexpr float kQuarterPi = 0.78539816f;
+// A bar's pixels this close to the image's border: the edge cuts it.
+constexpr int kBorderPx = 3;
 // A frame's random stream: the configured seed and the frame id.
 std::uint64_t frame_seed(std::uint64_t seed, std::uint64_t frame_id) {
   return seed ^ (frame_id * 0x9e3779b97f4a7c15ull);
@@ -206,12 +208,17 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // The beam-length check of Algorithm 1 applies in full only when both
   // ends are seen, against every known length; a bar that runs out of view
   // need only be long enough not to be clutter, and never longer than the
-  // longest handrail.
+  // longest handrail. Below the clutter floor, down to a fraction of the
+  // shortest handrail, only where the image's edge cuts the bar: a short
+  // piece of clutter in the middle of the view is no partial handrail.
   const float extent = end_t[1] - end_t[0];
   if (ends[0] && ends[1]) {
     return beam_length_matches(cfg_, extent) ? LineVerdict::kAccepted : LineVerdict::kBeamLength;
   }
-  if (extent < cfg_.min_visible_length_m) return LineVerdict::kTooShort;
+  if (extent < shortest_partial_bar_m(cfg_)) return LineVerdict::kTooShort;
+  if (extent < cfg_.min_visible_length_m && !touches_image_border(cloud, inliers, kBorderPx)) {
+    return LineVerdict::kTooShort;
+  }
   if (extent > cfg_.beam_length_max_ratio * longest_handrail_m(cfg_)) return LineVerdict::kTooLong;
   return LineVerdict::kAccepted;
 }

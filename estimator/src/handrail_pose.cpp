@@ -356,6 +356,17 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
   }
 }
 
+bool touches_image_border(const OrganizedCloud& cloud, const IndexList& pixels, int margin_px) {
+  const int w = static_cast<int>(cloud.width), h = static_cast<int>(cloud.height);
+  for (std::int32_t i : pixels) {
+    const int col = i % w, row = i / w;
+    if (col < margin_px || row < margin_px || col >= w - margin_px || row >= h - margin_px) {
+      return true;
+    }
+  }
+  return false;
+}
+
 float allowed_end_drop_m(const DetectorConfig& cfg, const PixelScale& scale, float z_m) {
   const float pixel_m = scale.ok && scale.fx_px > 0.0f ? z_m / scale.fx_px : 0.0f;
   return cfg.end_drop_max_m + 2.0f * pixel_m;

@@ -37,4 +37,15 @@ float longest_handrail_m(const DetectorConfig& cfg) {
   return longest;
 }
 
+float shortest_partial_bar_m(const DetectorConfig& cfg) {
+  float shortest = cfg.handrail.bar_length_m;
+  if (cfg.handrail_type_count > 0) {
+    shortest = INFINITY;
+    for (std::uint32_t k = 0; k < cfg.handrail_type_count && k < kMaxHandrailTypes; ++k) {
+      shortest = std::fmin(shortest, cfg.handrail_types[k].bar_length_m);
+    }
+  }
+  return std::fmin(cfg.min_visible_length_m, cfg.min_visible_fraction * shortest);
+}
+
 }  // namespace estimator

@@ -373,6 +373,26 @@ void test_the_mount_under_a_bar_beside_it(void**) {
   assert_false(find_mount_under_bar(m, cfg, kFront, 0.004f, &mount, plane_level, 1));
 }
 
+// A partial bar may be as short as 35 % of the shortest known handrail,
+// but never longer than the 8 cm clutter floor requires.
+void test_the_shortest_partial_bar(void**) {
+  estimator::DetectorConfig cfg;  // the ISS types, the shortest 8.5 in
+  float shortest = INFINITY;
+  for (std::uint32_t k = 0; k < cfg.handrail_type_count; ++k) {
+    shortest = std::fmin(shortest, cfg.handrail_types[k].bar_length_m);
+  }
+  assert_true(shortest < 0.21f);
+  assert_float_equal(estimator::shortest_partial_bar_m(cfg), 0.35f * shortest, 1e-6f);
+  cfg.min_visible_fraction = 1.0f;
+  assert_float_equal(estimator::shortest_partial_bar_m(cfg), cfg.min_visible_length_m, 1e-6f);
+  estimator::DetectorConfig one_length;  // the paper's round bar alone
+  one_length.handrail_type_count = 0;
+  one_length.handrail.bar_length_m = 0.55f;
+  assert_float_equal(estimator::shortest_partial_bar_m(one_length), 0.08f, 1e-6f);
+  one_length.handrail.bar_length_m = 0.15f;
+  assert_float_equal(estimator::shortest_partial_bar_m(one_length), 0.0525f, 1e-6f);
+}
+
 void test_bad_mount_and_type_settings_are_named(void**) {
   DetectorConfig cfg;
   cfg.max_mount_hypotheses = 0;
@@ -403,6 +423,14 @@ void test_bad_mount_and_type_settings_are_named(void**) {
   cfg.end_drop_max_m = 0.0f;
   assert_string_equal(validate(cfg), "end_drop_max_m");
   cfg = DetectorConfig{};
+  cfg.min_visible_fraction = 0.0f;
+  assert_string_equal(validate(cfg), "min_visible_fraction");
+  cfg.min_visible_fraction = 1.5f;
+  assert_string_equal(validate(cfg), "min_visible_fraction");
+  cfg = DetectorConfig{};
+  cfg.min_visible_length_m = NAN;
+  assert_string_equal(validate(cfg), "min_visible_length_m");
+  cfg = DetectorConfig{};
   cfg.handrail_types[1].bar_length_m = NAN;
   assert_string_equal(validate(cfg), "handrail_types");
   cfg = DetectorConfig{};
@@ -429,6 +457,7 @@ int main() {
       cmocka_unit_test(test_shifted_pass_equals_a_full_pass),
       cmocka_unit_test(test_iss_lengths_are_matched_by_ratio),
       cmocka_unit_test(test_one_configured_length_without_types),
+      cmocka_unit_test(test_the_shortest_partial_bar),
       cmocka_unit_test(test_bad_mount_and_type_settings_are_named),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

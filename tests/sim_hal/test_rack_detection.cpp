@@ -14,6 +14,7 @@
 #include "cmocka_cpp.hpp"
 #include "common/frame_convert.hpp"
 #include "estimator/handrail_detector.hpp"
+#include "estimator/handrail_types.hpp"
 #include "sim_hal/ground_truth.hpp"
 #include "sim_hal/scenario.hpp"
 #include "sim_hal/tof_raw_renderer.hpp"
@@ -289,6 +290,57 @@ void test_short_ramps_are_refused_and_a_seat_track_is_no_ramp(void**) {
   assert_int_equal(rail_found, frames);
 }
 
+// The station's shortest bar (8.5 in, 0.20 m) running out of the image
+// with 35 to 50 % of its centre line in view (the simulator's truth): a
+// handrail in reach by issue #17's definition. The 8 cm clutter floor
+// alone refused a sixth of these views; 35 % of the shortest configured
+// bar (7 cm) accepts them.
+void test_the_shortest_bar_partly_in_view_is_found(void**) {
+  constexpr double kBar_m = 0.20;
+  const sim_hal::CameraIntrinsics cam = sim_hal::pico_flexx_intrinsics();
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);
+  estimator::DetectorConfig floor_only = cfg;
+  floor_only.min_visible_fraction = 1.0f;  // min(8 cm, 0.20 m): the floor alone
+  estimator::HandrailDetector detector(cfg), with_floor_only(floor_only);
+  Rendered r;
+  int found = 0, found_floor_only = 0, frames = 0;
+  // At three ranges, slide the bar out past the image's edge along +y,
+  // 3 mm at a time, and keep the views with 35 to 50 % in view.
+  for (double range_m : {0.45, 0.55, 0.65}) {
+    const Eigen::Isometry3d T =
+        sim_hal::camera_pose(Eigen::Vector3d(range_m, 0.0, 0.0), -Eigen::Vector3d::UnitX(),
+                             Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+    for (int k = 0; k < 100; ++k) {
+      sim_hal::Scene scene;
+      scene.add_wall(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(),
+                     4.0, 3.0);
+      sim_hal::Handrail rail;
+      rail.kind = sim_hal::HandrailKind::kIss;
+      rail.axis = Eigen::Vector3d::UnitY();
+      rail.bar_length_m = kBar_m;
+      rail.foot_center = Eigen::Vector3d(0.0, 0.15 + 0.003 * k, 0.0);
+      scene.add_handrail(rail);
+      const sim_hal::FrameTruth truth = sim_hal::compute_truth(scene, cam, T, 0);
+      if (truth.handrails.empty()) continue;
+      const double visible = truth.handrails[0].visible_fraction;
+      if (visible < 0.35 || visible > 0.50) continue;
+      render_scene(scene, T, static_cast<std::size_t>(frames), &r);
+      ++frames;
+      found += detector.detect(r.cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
+      found_floor_only +=
+          with_floor_only.detect(r.cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
+    }
+  }
+  std::printf(
+      "0.20 m bar 35 to 50 %% in view: found %d of %d (%d with the 8 cm floor alone); "
+      "shortest partial bar %.3f m\n",
+      found, frames, found_floor_only, static_cast<double>(estimator::shortest_partial_bar_m(cfg)));
+  assert_true(frames >= 20);
+  assert_true(found * 10 >= frames * 9);
+  assert_true(found >= found_floor_only + 3);
+}
+
 // A seat track on a narrow rack face (12 cm tall, 1.85 cm deep) between a
 // face 2 cm proud above it, which fills most of the view, and a deeper one
 // below. The bar's front stands 5.3 cm off the proud face: in the gap
@@ -395,6 +447,7 @@ int main() {
       cmocka_unit_test(test_rack_walls_without_a_handrail_give_nothing),
       cmocka_unit_test(test_handrail_like_cable_is_refused_for_its_ramps),
       cmocka_unit_test(test_short_ramps_are_refused_and_a_seat_track_is_no_ramp),
+      cmocka_unit_test(test_the_shortest_bar_partly_in_view_is_found),
       cmocka_unit_test(test_rail_on_a_face_beside_the_dominant_plane_is_seated_there),
       cmocka_unit_test(test_rail_beside_the_dominant_plane_is_found_on_the_raw_path),
       cmocka_unit_test(test_searching_mounts_allocates_nothing),

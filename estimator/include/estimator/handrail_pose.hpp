@@ -61,6 +61,10 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
                  bool end_seen[2], float end_t_m[2], float end_drop_m[2] = nullptr,
                  float front_level_m = 0.0f);
 
+// Whether any of the pixels lies within margin_px of the image's border
+// (a bar the image's edge cuts).
+bool touches_image_border(const OrganizedCloud& cloud, const IndexList& pixels, int margin_px);
+
 // The longest drop a seen end may show at depth z_m: the handrail's own
 // (end_drop_max_m: its leg's length along the rail) plus two pixels at
 // that depth.

@@ -18,4 +18,8 @@ bool beam_length_matches(const DetectorConfig& cfg, float beam_length_m);
 // The longest bar the detector accepts a partial view of.
 float longest_handrail_m(const DetectorConfig& cfg);
 
+// The shortest partial view of a bar accepted: min_visible_length_m, or
+// min_visible_fraction of the shortest known length where that is less.
+float shortest_partial_bar_m(const DetectorConfig& cfg);
+
 }  // namespace estimator

@@ -31,7 +31,7 @@ enum class LineVerdict : std::uint8_t {
   kTooFewPoints,   // its cluster is smaller than min_line_inliers
   kWrongHeight,    // its front face is not where the bar's is
   kNoCenterLine,   // degenerate points
-  kTooShort,       // visible part shorter than min_visible_length_m
+  kTooShort,       // visible part shorter than shortest_partial_bar_m()
   kTooLong,        // longer than b_H,max
   kBeamLength,     // both ends seen, length outside b_H,min..b_H,max
   kNoMountBeside,  // the surface it would stand on is not beside it

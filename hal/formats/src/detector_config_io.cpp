@@ -36,6 +36,7 @@ constexpr FloatKey kFloatKeys[] = {
     {"beam_length_min_ratio", &estimator::DetectorConfig::beam_length_min_ratio},
     {"beam_length_max_ratio", &estimator::DetectorConfig::beam_length_max_ratio},
     {"min_visible_length_m", &estimator::DetectorConfig::min_visible_length_m},
+    {"min_visible_fraction", &estimator::DetectorConfig::min_visible_fraction},
     {"front_height_tolerance_m", &estimator::DetectorConfig::front_height_tolerance_m},
     {"end_search_m", &estimator::DetectorConfig::end_search_m},
     {"end_drop_max_m", &estimator::DetectorConfig::end_drop_max_m},
