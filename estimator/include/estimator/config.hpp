@@ -110,9 +110,10 @@ struct DetectorConfig {
   float beam_length_min_ratio = 0.75f;  // b_H,min / b_H when both ends seen
   float beam_length_max_ratio = 1.25f;  // b_H,max / b_H
   float min_visible_length_m = 0.08f;   // shorter segments are clutter
-  // ... unless a handrail this much in view would be: a bar 35 % in view
-  // is one the robot must find (issue #17), and 35 % of the station's
-  // 0.20 m bar is 7 cm (shortest_partial_bar_m).
+  // Where the image's edge cuts a bar, down to this fraction of the
+  // shortest known handrail instead: a bar 35 % in view is one the robot
+  // must find (issue #17), and 35 % of the station's 0.20 m bar is 7 cm
+  // (shortest_partial_bar_m, verify_candidate).
   float min_visible_fraction = 0.35f;
   float front_height_tolerance_m = 0.004f;  // bar front face vs geometry
   std::uint32_t min_line_inliers = 25;
