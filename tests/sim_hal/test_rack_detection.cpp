@@ -178,6 +178,16 @@ void render_scene(const sim_hal::Scene& scene, const Eigen::Isometry3d& T_world_
   r->cloud = tools::to_estimator_cloud(frame, &r->buffer);
 }
 
+// Renders the scene from T_world_cam and says whether the detector finds a
+// handrail there with both ends seen.
+bool found_with_both_ends(const sim_hal::Scene& scene, const Eigen::Isometry3d& T_world_cam,
+                          std::size_t f, estimator::HandrailDetector& detector, Rendered* r) {
+  render_scene(scene, T_world_cam, f, r);
+  const estimator::HandrailDetection h = detector.detect(r->cloud);
+  return h.status == estimator::DetectStatus::kFound &&
+         h.state == estimator::HandrailState::kBothEnds;
+}
+
 void test_handrail_like_cable_is_refused_for_its_ramps(void**) {
   sim_hal::Scene cable_scene, rail_scene;
   for (sim_hal::Scene* s : {&cable_scene, &rail_scene}) {
@@ -210,12 +220,7 @@ void test_handrail_like_cable_is_refused_for_its_ramps(void**) {
     ramp_refusals += d.counts.first_rejection == estimator::LineVerdict::kRampEnd ? 1 : 0;
     cable_found_lenient +=
         lenient.detect(r.cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
-    render_scene(rail_scene, T, f, &r);
-    const estimator::HandrailDetection h = detector.detect(r.cloud);
-    if (h.status == estimator::DetectStatus::kFound &&
-        h.state == estimator::HandrailState::kBothEnds) {
-      ++rail_found;
-    }
+    rail_found += found_with_both_ends(rail_scene, T, f, detector, &r) ? 1 : 0;
   }
   std::printf(
       "handrail-like cable: found %d of %d (%d refused for a ramp end; %d found without "
@@ -273,12 +278,7 @@ void test_short_ramps_are_refused_and_a_seat_track_is_no_ramp(void**) {
     cable_found += d.status == estimator::DetectStatus::kFound ? 1 : 0;
     cable_found_straight_on += d.status == estimator::DetectStatus::kFound && f < 5 ? 1 : 0;
     ramp_refusals += d.counts.first_rejection == estimator::LineVerdict::kRampEnd ? 1 : 0;
-    render_scene(rail_scene, T, f, &r);
-    const estimator::HandrailDetection h = detector.detect(r.cloud);
-    if (h.status == estimator::DetectStatus::kFound &&
-        h.state == estimator::HandrailState::kBothEnds) {
-      ++rail_found;
-    }
+    rail_found += found_with_both_ends(rail_scene, T, f, detector, &r) ? 1 : 0;
   }
   std::printf(
       "cable with 8 cm ramps: found %d of %d (%d straight on; %d refused for a ramp end); the "
