@@ -339,10 +339,15 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
       best_slot = slot;
       // A bar the plane's search seated beside the plane (see
       // seat_on_mount) does not end the search: the mounts' own searches
-      // may find one that stands on what they search.
+      // may find one that stands on what they search. Nor does a find with
+      // no end in view: no end of it was put to the leg test, and a rack's
+      // raised edge strip running out of the view both ways passes every
+      // other test (Columbus); the search goes on, and the best supported
+      // find still wins.
       const bool seated_beside = slot == kDominant && attempt.mount_offset_m != 0.0f;
+      const bool ends_tested = attempt.state != HandrailState::kNoEnd;
       if (attempt.inliers >= cfg_.mount_accept_inliers && along_gripper(attempt) &&
-          !seated_beside) {
+          !seated_beside && ends_tested) {
         break;
       }
     }
