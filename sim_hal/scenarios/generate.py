@@ -4,7 +4,8 @@ this after changing it (python3 generate.py) and commit both.
 
 python3 generate.py --dev DIR writes a development set instead: the rack-wall
 scenarios with every layout drawn from other seeds (and other sensor noise),
-named dev-*, into DIR (not committed). Work on the detector is tried there;
+and approaches to four other rails in Columbus (other rack edges, other
+lengths: COLUMBUS_DEV_RAILS), named dev-*, into DIR (not committed). Work on the detector is tried there;
 the shipped scenarios stay the ones it is judged on, so that no threshold is
 fitted to the scenes that score it.
 
@@ -126,10 +127,12 @@ ASSETS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets"
 
 def write(s):
     if DEV_DIR is not None:
-        # Only the rack walls: their layouts come from the seeds. Columbus's
-        # geometry is the module's, the same in any set, so it stays judged
-        # only. Mesh paths made absolute, the files living elsewhere.
-        if not s["name"].startswith("rack-") or "control" in s["name"]:
+        # Only the rack walls, whose layouts come from the seeds, and the
+        # Columbus approaches to the development rails (other rack edges of
+        # the module, surveyed below). Mesh paths made absolute, the files
+        # living elsewhere.
+        dev_scene = s["name"].startswith("rack-") and "control" not in s["name"]
+        if not (dev_scene or s["name"] == "columbus-approaches"):
             return
         text = json.dumps(s).replace('"../assets/', '"' + os.path.normpath(ASSETS) + '/')
         s = json.loads(text)
@@ -571,6 +574,39 @@ rack_scenarios += [rack_control(False), rack_control(True)]
 # sim_hal's test_every_shipped_handrail_stands_on_a_surface checks their feet.
 COLUMBUS = "../assets/iss_modules/columbus_eu_lab.dae"
 
+# Where the rails stand in Columbus: on a seat track 4 cm beside a rack
+# edge, found by ray casting the module (sim_hal/scenarios/columbus_survey.py
+# prints each wall's faces and edges). Each: kind, mesh or length, the point
+# on the rack face under the rail's middle, the face's normal, the rail's
+# axis, the track's length.
+COLUMBUS_RAILS = (
+    # Starboard: a vertical 21.5 in rail 4 cm beside the rack edge at y = 3.38.
+    ("iss_mesh", "21-5", [1.0532, 3.42, -0.15], [-1, 0, 0], [0, 0, 1], 1.3),
+    # Port: a vertical 30 in rail beside the edge strip at y = 2.31.
+    ("iss_mesh", "30", [-1.0709, 2.36, -0.15], [1, 0, 0], [0, 0, 1], 1.3),
+    # Deck: a 41.5 in rail across the module beside the edge at y = 3.37.
+    ("iss_mesh", "41-5", [0.05, 3.42, -1.0834], [0, 0, 1], [1, 0, 0], 1.3),
+    # Overhead: a 1 m module rail across the module beside the edge at y = 3.4.
+    ("module_rail", 1.0, [0.0, 3.56, 1.0447], [0, 0, -1], [1, 0, 0], 1.2),
+)
+# The development set's rails (generate.py --dev): other rack edges of the
+# same module, other lengths. Each face was checked flat (within 3 mm) past
+# both ends of its track by the survey's line scans.
+COLUMBUS_DEV_RAILS = (
+    # Starboard: a vertical 30 in rail 4 cm beside the edge (a groove) at
+    # y = 4.42; the face is flat over z -0.81 .. 0.53.
+    ("iss_mesh", "30", [1.0532, 4.465, -0.15], [-1, 0, 0], [0, 0, 1], 1.2),
+    # Port: a vertical 8.5 in rail beside the edge strip at y = 3.39, a gap
+    # 7 cm further; flat over z -0.82 .. 0.54.
+    ("iss_mesh", "8-5", [-1.0727, 3.435, -0.15], [1, 0, 0], [0, 0, 1], 1.2),
+    # Deck: a 21.5 in rail across the module beside the edge at y = 1.26,
+    # an opening that returns nothing before it; flat over x -0.53 .. 0.65.
+    ("iss_mesh", "21-5", [0.05, 1.30, -1.0701], [0, 0, 1], [1, 0, 0], 1.1),
+    # Overhead: a 1 m module rail beside the edge at y = 2.335, a gap before
+    # it; flat over x -0.57 .. 0.73.
+    ("module_rail", 1.0, [0.08, 2.375, 1.0446], [0, 0, -1], [1, 0, 0], 1.2),
+)
+
 def columbus_scene():
     rails, tracks = [], []
     def on_track(kind, what, face_point, normal, axis, track_len, along_offset=0.0):
@@ -589,25 +625,30 @@ def columbus_scene():
         else:
             r["length"] = what
         rails.append(r)
-    # Starboard: a vertical 21.5 in rail 4 cm beside the rack edge at y = 3.38.
-    on_track("iss_mesh", MESHES["21-5"][0], [1.0532, 3.42, -0.15], [-1, 0, 0], [0, 0, 1], 1.3)
-    # Port: a vertical 30 in rail beside the edge strip at y = 2.31.
-    on_track("iss_mesh", MESHES["30"][0], [-1.0709, 2.36, -0.15], [1, 0, 0], [0, 0, 1], 1.3)
-    # Deck: a 41.5 in rail across the module beside the edge at y = 3.37.
-    on_track("iss_mesh", MESHES["41-5"][0], [0.05, 3.42, -1.0834], [0, 0, 1], [1, 0, 0], 1.3)
-    # Overhead: a 1 m module rail across the module beside the edge at y = 3.4.
-    on_track("module_rail", 1.0, [0.0, 3.56, 1.0447], [0, 0, -1], [1, 0, 0], 1.2)
+    for kind, what, face_point, normal, axis, track_len in (
+            COLUMBUS_DEV_RAILS if DEV_DIR is not None else COLUMBUS_RAILS):
+        on_track(kind, MESHES[what][0] if kind == "iss_mesh" else what, face_point, normal, axis,
+                 track_len)
     return {"meshes": [{"path": COLUMBUS, "reflectivity": 0.55}], "handrails": rails, "boxes": tracks}
 
 def columbus_approaches():
     poses = []
     # Toward each rail from the aisle, 12 cm along it from its centre, the
-    # rail vertical in the image (gripper angle 0).
-    for label, start, end, facing, up, rpy0, rpy1 in (
-            ("columbus-starboard", [0.0, 3.42, -0.03], [0.74, 3.42, -0.03], [1, 0, 0], [0, 0, 1], (0, 0, 10), (5, -5, -5)),
-            ("columbus-port", [0.0, 2.36, -0.03], [-0.758, 2.36, -0.03], [-1, 0, 0], [0, 0, 1], (0, 10, -15), (-10, 0, 5)),
-            ("columbus-deck", [0.17, 3.42, -0.1], [0.17, 3.42, -0.77], [0, 0, -1], [1, 0, 0], (0, 0, 0), (15, 5, -10)),
-            ("columbus-overhead", [0.12, 3.56, 0.3], [0.12, 3.56, 0.73], [0, 0, 1], [1, 0, 0], (0, -10, 10), (0, 5, 0))):
+    # rail vertical in the image (gripper angle 0). The development set's
+    # approaches: other start points, 4 to 10 cm along their rails either
+    # way, other tilts.
+    approaches = (
+        ("columbus-starboard", [0.0, 3.42, -0.03], [0.74, 3.42, -0.03], [1, 0, 0], [0, 0, 1], (0, 0, 10), (5, -5, -5)),
+        ("columbus-port", [0.0, 2.36, -0.03], [-0.758, 2.36, -0.03], [-1, 0, 0], [0, 0, 1], (0, 10, -15), (-10, 0, 5)),
+        ("columbus-deck", [0.17, 3.42, -0.1], [0.17, 3.42, -0.77], [0, 0, -1], [1, 0, 0], (0, 0, 0), (15, 5, -10)),
+        ("columbus-overhead", [0.12, 3.56, 0.3], [0.12, 3.56, 0.73], [0, 0, 1], [1, 0, 0], (0, -10, 10), (0, 5, 0)))
+    if DEV_DIR is not None:
+        approaches = (
+            ("columbus-starboard", [-0.1, 4.465, -0.25], [0.72, 4.465, -0.25], [1, 0, 0], [0, 0, 1], (0, 5, -10), (-5, 0, 5)),
+            ("columbus-port", [0.1, 3.435, -0.11], [-0.76, 3.435, -0.11], [-1, 0, 0], [0, 0, 1], (0, -5, 10), (5, 5, 0)),
+            ("columbus-deck", [0.15, 1.30, 0.0], [0.15, 1.30, -0.76], [0, 0, -1], [1, 0, 0], (0, 0, 10), (-10, 5, 0)),
+            ("columbus-overhead", [-0.02, 2.375, 0.2], [-0.02, 2.375, 0.73], [0, 0, 1], [1, 0, 0], (0, 10, -5), (5, -5, 0)))
+    for label, start, end, facing, up, rpy0, rpy1 in approaches:
         poses.append({"label": label, "position": start, "facing": facing, "up": up, "rpy_deg": list(rpy0),
                       "frames": 40, "to": {"position": end, "rpy_deg": list(rpy1)}})
     return {"name": "columbus-approaches",
