@@ -4,8 +4,9 @@ this after changing it (python3 generate.py) and commit both.
 
 python3 generate.py --dev DIR writes a development set instead: the rack-wall
 scenarios with every layout drawn from other seeds (and other sensor noise),
-and approaches to four other rails in Columbus (other rack edges, other
-lengths: COLUMBUS_DEV_RAILS), named dev-*, into DIR (not committed). Work on the detector is tried there;
+approaches to four other rails in Columbus (other rack edges, other
+lengths: COLUMBUS_DEV_RAILS) and a flat wall with seeded clutter
+(flat_clutter()), named dev-*, into DIR (not committed). Work on the detector is tried there;
 the shipped scenarios stay the ones it is judged on, so that no threshold is
 fitted to the scenes that score it.
 
@@ -132,7 +133,7 @@ def write(s):
         # the module, surveyed below). Mesh paths made absolute, the files
         # living elsewhere.
         dev_scene = s["name"].startswith("rack-") and "control" not in s["name"]
-        if not (dev_scene or s["name"] == "columbus-approaches"):
+        if not (dev_scene or s["name"] in ("columbus-approaches", "flat-clutter")):
             return
         text = json.dumps(s).replace('"../assets/', '"' + os.path.normpath(ASSETS) + '/')
         s = json.loads(text)
@@ -674,6 +675,50 @@ def columbus_views():
                            "view, the gripper taking rails vertical in the image).",
             "seed": 2202, "frame_rate_hz": 5, "gripper_angle_deg": 0, "scene": columbus_scene(), "poses": poses}
 
+class FlatLayout:
+    """A plain wall in the rail coordinates clutter_on() uses: a along v,
+    c along u, every surface at the wall."""
+    def __init__(self, wall):
+        self.wall, self.vertical = wall, True
+
+    def uv(self, a, c):
+        return (c, a)
+
+    def surface_depth(self, a, c):
+        return 0.0
+
+    def world(self, a, c, height):
+        return self.wall.point(c, a, height)
+
+def flat_clutter():
+    """The development set's flat wall: clutter_only()'s kind of scene (a
+    flat wall, the station's clutter, no handrail) drawn from a seed, so
+    that a change's false detections on a flat wall are seen before the
+    scored flat walls are. Written only with --dev."""
+    rng = random.Random(2301)
+    flat = FlatLayout(WALL_X)
+    cables, boxes = [], []
+    for a_off in (-0.35, 0.35):
+        more_cables, more_boxes = clutter_on(flat, rng, 0.55)
+        for cab in more_cables:
+            cab["points"] = [[p[0], p[1] + a_off, p[2]] for p in cab["points"]]
+        for box in more_boxes:
+            box["center"][1] += a_off
+        cables += more_cables
+        boxes += more_boxes
+    scene = {"walls": [WALL], "cables": cables, "boxes": boxes,
+             "pipes": [{"points": [[0.03, -2.0, -0.45], [0.03, 2.0, -0.45]], "diameter": 0.05}]}
+    return {"name": "flat-clutter",
+            "description": "A flat wall with the station's clutter (cables lying, bridging and handrail-like, boxes, "
+                           "a pipe) drawn from a seed, no handrail: every detection is false. 100 frames.",
+            "seed": 2301, "frame_rate_hz": 5, "gripper_angle_deg": 90, "scene": scene,
+            "poses": [{"label": "flat-clutter-sweep", "position": [0.75, -0.7, 0.0], "rpy_deg": [0, 0, -10],
+                       "frames": 60, "to": {"position": [0.65, 0.7, 0.05], "rpy_deg": [15, 10, 15]}},
+                      {"label": "flat-clutter-close", "position": [0.45, 0.4, 0.15], "rpy_deg": [-20, 10, 10],
+                       "frames": 40, "to": {"position": [0.5, -0.4, -0.15], "rpy_deg": [20, -10, -20]}}]}
+
 rack_scenarios += [columbus_approaches(), columbus_views()]
+if DEV_DIR is not None:
+    rack_scenarios.append(flat_clutter())
 for s in rack_scenarios:
     write(s)
