@@ -1,8 +1,14 @@
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "cmocka_cpp.hpp"
 #include "detection_json.hpp"
 #include "formats/detector_config_io.hpp"
+#include "output_dir.hpp"
 #include "png_image.hpp"
 
 namespace {
@@ -142,14 +148,46 @@ void test_image_text_and_png(void**) {
   assert_string_equal(error.c_str(), "/nonexistent/dir/x.png: cannot create the PNG file");
 }
 
+// A tool's output folder is made with its missing parents; a file standing
+// where a folder should be is refused with its path named.
+void test_output_dir(void**) {
+  char base_template[] = "/tmp/hrp-outdir-XXXXXX";
+  const char* base = mkdtemp(base_template);
+  assert_non_null(base);
+  const std::string root(base);
+  std::string error;
+  const std::string nested = root + "/a/b/c";
+  assert_true(tools::make_output_dir(nested, &error));
+  struct stat st {};
+  assert_int_equal(stat(nested.c_str(), &st), 0);
+  assert_true(S_ISDIR(st.st_mode));
+  assert_true(tools::make_output_dir(nested, &error));  // there already: fine
+
+  const std::string file = root + "/a/file";
+  FILE* f = std::fopen(file.c_str(), "w");
+  assert_non_null(f);
+  std::fclose(f);
+  error.clear();
+  assert_false(tools::make_output_dir(file, &error));
+  assert_true(error.find(file) != std::string::npos);
+  error.clear();
+  assert_false(tools::make_output_dir(file + "/below", &error));
+  assert_true(error.find(file + "/below") != std::string::npos);
+  error.clear();
+  assert_false(tools::make_output_dir("", &error));
+  assert_false(error.empty());
+
+  std::remove(file.c_str());
+  for (const std::string& d : {nested, root + "/a/b", root + "/a", root}) rmdir(d.c_str());
+}
+
 }  // namespace
 
 int main() {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_config_file),
-      cmocka_unit_test(test_detection_json),
-      cmocka_unit_test(test_mounts_json),
-      cmocka_unit_test(test_image_text_and_png),
+      cmocka_unit_test(test_config_file), cmocka_unit_test(test_detection_json),
+      cmocka_unit_test(test_mounts_json), cmocka_unit_test(test_image_text_and_png),
+      cmocka_unit_test(test_output_dir),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -38,6 +38,7 @@
 #include "fsw_app/msg_convert.hpp"
 #include "hal/clock.hpp"
 #include "hil_sensors.hpp"
+#include "output_dir.hpp"
 #include "sim_hal/scenario.hpp"
 #include "sim_hal/simulated_camera.hpp"
 
@@ -176,7 +177,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "dynamic_test: %s has no handrail\n", opt.scenario.c_str());
     return 2;
   }
-  ::mkdir(opt.out.c_str(), 0755);
+  if (!tools::make_output_dir(opt.out, &error)) {
+    std::fprintf(stderr, "dynamic_test: --out: %s\n", error.c_str());
+    return 2;
+  }
   const sim_hal::Handrail& h = scenario.scene.handrails.front();
   WallFrame w;
   w.n = h.normal.normalized();

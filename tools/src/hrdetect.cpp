@@ -13,6 +13,7 @@
 #include "common/depth_picture.hpp"
 #include "common/detection_json.hpp"
 #include "common/frame_convert.hpp"
+#include "common/output_dir.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "estimator/handrail_tracker.hpp"
 #include "estimator/pixel_scale.hpp"
@@ -243,9 +244,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (gripper_given) cfg.gripper_angle_rad = static_cast<float>(gripper_deg * M_PI / 180.0);
-  if (!debug_dir.empty() && mkdir(debug_dir.c_str(), 0755) != 0 && errno != EEXIST) {
-    std::fprintf(stderr, "hrdetect: cannot create %s: %s\n", debug_dir.c_str(),
-                 std::strerror(errno));
+  if (!debug_dir.empty() && !tools::make_output_dir(debug_dir, &error)) {
+    std::fprintf(stderr, "hrdetect: --debug-png: %s\n", error.c_str());
     return 2;
   }
 

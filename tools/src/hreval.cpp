@@ -19,6 +19,7 @@
 #include "estimator/handrail_detector.hpp"
 #include "eval_chart.hpp"
 #include "eval_metrics.hpp"
+#include "output_dir.hpp"
 #include "sim_camera_path.hpp"
 #include "sim_hal/scenario.hpp"
 
@@ -255,8 +256,9 @@ int main(int argc, char** argv) {
                  scenario_dir.c_str());
     return 2;
   }
-  if (mkdir(out_dir.c_str(), 0755) != 0 && errno != EEXIST) {
-    std::fprintf(stderr, "hreval: cannot create %s: %s\n", out_dir.c_str(), std::strerror(errno));
+  std::string dir_error;
+  if (!tools::make_output_dir(out_dir, &dir_error)) {
+    std::fprintf(stderr, "hreval: --out: %s\n", dir_error.c_str());
     return 2;
   }
 

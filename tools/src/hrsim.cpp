@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/depth_picture.hpp"
+#include "common/output_dir.hpp"
 #include "common/progress.hpp"
 #include "formats/pcd_io.hpp"
 #include "raw_frame_file.hpp"
@@ -27,7 +28,7 @@ void usage(FILE* out) {
                "Renders a scenario with the simulated Pico Flexx into DIR/frame_NNNNN.pcd\n"
                "and DIR/truth.jsonl (one JSON object of ground truth per frame).\n\n"
                "options:\n"
-               "  -o, --out DIR     output folder (created if missing)\n"
+               "  -o, --out DIR     output folder (created, with its parents, if missing)\n"
                "  --png             also write DIR/png/frame_NNNNN.png: depth in false colour\n"
                "                    with the true bar centre lines (white) and ends (magenta)\n"
                "  --pcd-format ascii|binary|binary_compressed\n"
@@ -43,10 +44,6 @@ void usage(FILE* out) {
                "  --max-frames N    render only the first N frames\n"
                "  --seed N          override the scenario's seed\n"
                "  -h, --help        this text\n");
-}
-
-bool make_dir(const std::string& path) {
-  return mkdir(path.c_str(), 0755) == 0 || errno == EEXIST;
 }
 
 }  // namespace
@@ -124,9 +121,10 @@ int main(int argc, char** argv) {
   }
   if (seed >= 0) scenario.seed = static_cast<std::uint64_t>(seed);
   const bool raw = camera_path == "raw";
-  if (!make_dir(out_dir) || (png && !make_dir(out_dir + "/png")) ||
-      (raw && !make_dir(out_dir + "/raw"))) {
-    std::fprintf(stderr, "hrsim: cannot create %s: %s\n", out_dir.c_str(), std::strerror(errno));
+  if (!tools::make_output_dir(out_dir, &error) ||
+      (png && !tools::make_output_dir(out_dir + "/png", &error)) ||
+      (raw && !tools::make_output_dir(out_dir + "/raw", &error))) {
+    std::fprintf(stderr, "hrsim: %s\n", error.c_str());
     return 1;
   }
   std::ofstream truth_out(out_dir + "/truth.jsonl");
