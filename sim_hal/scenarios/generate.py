@@ -6,8 +6,8 @@ python3 generate.py --dev DIR writes a development set instead: the rack-wall
 scenarios with every layout drawn from other seeds (and other sensor noise),
 approaches to four other rails in Columbus (other rack edges, other
 lengths: COLUMBUS_DEV_RAILS) and a flat wall with seeded clutter
-(flat_clutter()), named dev-*, into DIR (not committed). Work on the detector is tried there;
-the shipped scenarios stay the ones it is judged on, so that no threshold is
+(flat_clutter()), named dev-*, into DIR (not committed). Work on the
+detector is tried there; the shipped scenarios stay the ones it is judged on, so that no threshold is
 fitted to the scenes that score it.
 
 World frame: the main wall is the plane x = 0, facing +x (toward the room),
@@ -128,10 +128,10 @@ ASSETS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets"
 
 def write(s):
     if DEV_DIR is not None:
-        # Only the rack walls, whose layouts come from the seeds, and the
+        # Only the rack walls, whose layouts come from the seeds, the
         # Columbus approaches to the development rails (other rack edges of
-        # the module, surveyed below). Mesh paths made absolute, the files
-        # living elsewhere.
+        # the module, surveyed below) and the seeded flat-wall clutter. Mesh
+        # paths made absolute, the files living elsewhere.
         dev_scene = s["name"].startswith("rack-") and "control" not in s["name"]
         if not (dev_scene or s["name"] in ("columbus-approaches", "flat-clutter")):
             return
