@@ -340,10 +340,10 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
       // A bar the plane's search seated beside the plane (see
       // seat_on_mount) does not end the search: the mounts' own searches
       // may find one that stands on what they search. Nor does a find with
-      // no end in view: no end of it was put to the leg test, and a rack's
-      // raised edge strip running out of the view both ways passes every
-      // other test (Columbus); the search goes on, and the best supported
-      // find still wins.
+      // no end in view: no end of it was put to the leg test, and a fin at
+      // a rack's edge running out of the view both ways passes every other
+      // test (Columbus); the search goes on, and the best supported find
+      // still wins.
       const bool seated_beside = slot == kDominant && attempt.mount_offset_m != 0.0f;
       const bool ends_tested = attempt.state != HandrailState::kNoEnd;
       if (attempt.inliers >= cfg_.mount_accept_inliers && along_gripper(attempt) &&

@@ -417,10 +417,10 @@ void test_rail_beside_the_dominant_plane_is_found_on_the_raw_path(void**) {
       "raw", [&](const sim_hal::Scenario& s, std::size_t f, Rendered* r) { raw.render(s, f, r); });
 }
 
-// In Columbus a rack's raised edge strip runs past both sides of the view
-// beside a groove, at a handrail's front height over the face behind it,
-// and the first mount searched takes it for a handrail with no end in view
-// (NE) and a few hundred inliers. The starboard rail, its top end in view,
+// In Columbus a fin at a rack's edge (about a centimetre wide, 7 cm proud
+// of the recessed face beside it) runs past both sides of the view beside a
+// groove, and the first mount searched takes it for a handrail with no end
+// in view (NE) and a few hundred inliers. The starboard rail, its top end in view,
 // stands on a mount searched later. A find with no end in view has not had
 // its ends looked at (no leg test), so it must not end the search over
 // mounts; the rail, better supported, wins. Before that rule the search
