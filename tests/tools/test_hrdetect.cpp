@@ -3,7 +3,8 @@
 // processed: /dev/zero (it grew to 2.1 GB), a FIFO named g.pcd in a folder
 // (it hung), a 141-byte header claiming 8192 x 8192 points (1.3 GB), a
 // folder named x.pcd, an empty folder and an unwritable stdout or
-// --debug-png folder (exit 0 before).
+// --debug-png folder (exit 0 before; a --debug-png path that is a file is
+// refused up front since session 19).
 //   argv[1]: the hrdetect program
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -122,10 +123,22 @@ void test_results_that_cannot_be_written_are_an_error(void**) {
   Result r = run({kGood}, "/dev/full");
   assert_int_equal(r.exit_status, 1);
   expect_in(r, "cannot write the results to stdout");
-  // /dev/full is no folder: every picture fails to write.
+  // /dev/full is no folder and cannot be made one: refused, named, before
+  // any frame is read (a bad option, exit 2).
   r = run({"--debug-png", "/dev/full", kGood});
+  assert_int_equal(r.exit_status, 2);
+  expect_in(r, "--debug-png: cannot create /dev/full");
+  assert_int_equal(r.json_lines, 0);
+  // A folder in which the picture cannot be written (its name taken by a
+  // folder): that frame's picture fails and is reported, its result is
+  // still written.
+  const std::string pictures = g_dir + "/pictures";
+  assert_int_equal(mkdir(pictures.c_str(), 0755), 0);
+  assert_int_equal(mkdir((pictures + "/table2-iss-1_g_pose.png").c_str(), 0755), 0);
+  r = run({"--debug-png", pictures, kGood});
   assert_int_equal(r.exit_status, 1);
   expect_in(r, "--debug-png:");
+  expect_in(r, "table2-iss-1_g_pose.png");
   assert_int_equal(r.json_lines, 1);
 }
 
