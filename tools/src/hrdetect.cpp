@@ -10,13 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "common/depth_picture.hpp"
 #include "common/detection_json.hpp"
 #include "common/frame_convert.hpp"
 #include "common/output_dir.hpp"
+#include "common/stage_pictures.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "estimator/handrail_tracker.hpp"
-#include "estimator/pixel_scale.hpp"
 #include "formats/detector_config_io.hpp"
 #include "formats/pcd_io.hpp"
 
@@ -94,79 +93,18 @@ std::string stem(const std::string& path) {
   return s;
 }
 
-// One picture per stage: the pixels a stage kept in colour over the depth
-// image in grey, like the paper's Figure 5 (a) to (f). False, with *error,
-// when a picture could not be written.
+// One picture per stage (common/stage_pictures.hpp), each written to
+// DIR/NAME_STAGE.png. False, with *error, when a picture could not be
+// written; the others are still written.
 bool write_debug_pictures(const std::string& dir, const std::string& name,
                           const hal::DepthFrame& frame, const estimator::OrganizedCloud& cloud,
                           const estimator::HandrailDetector& det,
                           const estimator::HandrailDetection& d, std::string* error) {
-  const estimator::Workspace& ws = det.workspace();
   bool written = true;
-  const int w = static_cast<int>(frame.width), h = static_cast<int>(frame.height);
-  struct Stage {
-    const char* suffix;
-    const char* title;
-    std::uint8_t flag;
-    tools::Rgb colour;
-  };
-  const Stage stages[] = {
-      {"a_cloud", "A CLOUD", estimator::kFlagValid, {200, 200, 200}},
-      {"b_plane", "B PLANE INLIERS", estimator::kFlagPlane, {60, 190, 70}},
-      {"c_gap", "C GAP DISTANCE", estimator::kFlagGap, {240, 200, 40}},
-      {"d_cross", "D CROSS POINT", estimator::kFlagCrossX | estimator::kFlagCrossY, {40, 180, 200}},
-      {"e_side", "E SIDE WIDTH", estimator::kFlagSide, {230, 120, 30}},
-      {"f_line", "F LINE AND ENDS", estimator::kFlagLine, {220, 40, 40}},
-  };
-  const estimator::PixelScale scale = estimator::estimate_pixel_scale(cloud, ws.sample);
-  auto project = [&](const Eigen::Vector3d& p, Eigen::Vector2d* px) {
-    if (!scale.ok || p.z() <= 1e-6) return false;
-    *px = {scale.cx_px + scale.fx_px * p.x() / p.z(), scale.cy_px + scale.fy_px * p.y() / p.z()};
-    return true;
-  };
-  for (const Stage& s : stages) {
-    tools::Image img(w, h);
-    for (int r = 0; r < h; ++r) {
-      for (int c = 0; c < w; ++c) {
-        const std::size_t i = static_cast<std::size_t>(r * w + c);
-        if (!(ws.flags[i] & estimator::kFlagValid)) continue;
-        const std::uint8_t g = static_cast<std::uint8_t>(
-            std::clamp(255.0f - 120.0f * frame.points[i].z_m, 40.0f, 200.0f));
-        img.set(c, r,
-                (ws.flags[i] & s.flag)
-                    ? s.colour
-                    : tools::Rgb{static_cast<std::uint8_t>(g / 3), static_cast<std::uint8_t>(g / 3),
-                                 static_cast<std::uint8_t>(g / 3)});
-      }
-    }
-    tools::Image big = img.scaled(tools::kPictureScale);
-    if (s.flag == estimator::kFlagLine && d.status == estimator::DetectStatus::kFound) {
-      for (int e = 0; e < 2; ++e) {
-        Eigen::Vector2d px;
-        if (project(d.ends_cam[e].cast<double>(), &px)) {
-          big.disc((px.x() + 0.5) * tools::kPictureScale, (px.y() + 0.5) * tools::kPictureScale, 5,
-                   d.end_seen[e] ? tools::Rgb{255, 0, 255} : tools::Rgb{120, 120, 255});
-        }
-      }
-    }
-    big.text(4, 4, s.title, {255, 255, 255}, 2);
-    written = big.write_png(dir + "/" + name + "_" + s.suffix + ".png", error) && written;
+  for (const tools::StagePicture& p : tools::draw_stage_pictures(frame, cloud, det, d)) {
+    written = p.image.write_png(dir + "/" + name + "_" + p.suffix + ".png", error) && written;
   }
-  // The final pose over the depth image: centre line, centre, target offset.
-  tools::Image pose = tools::depth_picture(frame);
-  if (d.status == estimator::DetectStatus::kFound) {
-    tools::draw_segment(&pose, project, d.ends_cam[0].cast<double>(), d.ends_cam[1].cast<double>(),
-                        {255, 255, 255}, 3);
-    tools::draw_segment(&pose, project, d.p_cam_center.cast<double>(),
-                        (d.p_cam_center + 0.1f * d.normal()).cast<double>(), {255, 0, 0}, 2);
-    tools::draw_segment(&pose, project, d.p_cam_center.cast<double>(),
-                        (d.p_cam_center + 0.1f * d.R_cam_handrail.col(1)).cast<double>(),
-                        {0, 255, 0}, 2);
-    pose.text(4, 4, std::string("POSE ") + to_string(d.state), {255, 255, 255}, 2);
-  } else {
-    pose.text(4, 4, std::string("NH ") + to_string(d.status), {255, 255, 255}, 2);
-  }
-  return pose.write_png(dir + "/" + name + "_g_pose.png", error) && written;
+  return written;
 }
 
 }  // namespace

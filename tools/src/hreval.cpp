@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -12,10 +13,12 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "common/frame_convert.hpp"
 #include "common/progress.hpp"
+#include "common/stage_pictures.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "eval_chart.hpp"
 #include "eval_metrics.hpp"
@@ -67,6 +70,88 @@ struct ScenarioResult {
   // The raw path's processing (frames == 0 on the depth path).
   pico_flexx::PipelineCounts tof;
   std::int64_t tof_median_us = -1;
+  // The proposed method's worst failed frame on the report's path, why it
+  // failed, and its picture (relative to the output folder; empty if none).
+  std::int64_t worst_frame = -1;
+  std::string worst_reason, worst_picture;
+};
+
+// The proposed method's worst failure in a scenario, kept (a copy of the
+// frame) to be drawn once the scenario has run. A false detection is the
+// worst kind, since the arm would go for it, and the more line inliers the
+// worse; then a missed target in reach, the more of it visible and the
+// nearer the worse; then a missed target out of reach.
+class WorstFrame {
+ public:
+  void consider(const hal::DepthFrame& frame, const sim_hal::FrameTruth& truth,
+                const estimator::HandrailDetection& d, bool is_false, int target,
+                int reach_target) {
+    std::tuple<int, double, double> rank;
+    if (is_false) {
+      rank = {3, d.inliers, 0.0};
+    } else {
+      const int t = reach_target >= 0 ? reach_target : target;
+      const sim_hal::HandrailTruth& h = truth.handrails[static_cast<std::size_t>(t)];
+      rank = {reach_target >= 0 ? 2 : 1, h.visible_fraction, -h.visible_center_cam.norm()};
+    }
+    if (rank <= rank_) return;
+    rank_ = rank;
+    frame_index_ = truth.frame;
+    reason_ = why(d, is_false);
+    const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
+    points_.assign(frame.points, frame.points + n);
+    view_ = frame;
+    view_.points = points_.data();
+    truth_.clear();
+    for (const sim_hal::HandrailTruth& h : truth.handrails) {
+      truth_.emplace_back(h.ends_cam[0], h.ends_cam[1]);
+    }
+  }
+  bool any() const { return std::get<0>(rank_) >= 0; }
+  std::uint64_t frame_index() const { return frame_index_; }
+  const std::string& reason() const { return reason_; }
+
+  // Runs the detector on the frame again, its workspace showing the search
+  // that gave the result, and writes the stage pictures as one sheet with
+  // the true centre lines in green. The detector draws each frame's random
+  // streams from its frame id, so the result is the one scored.
+  bool write_picture(const std::string& path, const std::string& scenario,
+                     estimator::DetectorConfig cfg, std::string* error) const {
+    cfg.workspace_shows_result = true;
+    estimator::HandrailDetector det(cfg);
+    std::vector<estimator::CloudPoint> buffer;
+    const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(view_, &buffer);
+    const estimator::HandrailDetection d = det.detect(cloud, estimator::Method::kProposed);
+    std::string caption = scenario + " FRAME " + std::to_string(frame_index_) + ": " + reason_;
+    std::transform(caption.begin(), caption.end(), caption.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    caption +=
+        "\nGREEN: TRUE CENTRE LINES. WHITE: THE DETECTED ONE, RED ITS WALL NORMAL. DOTS: ITS "
+        "ENDS (MAGENTA: SEEN)";
+    const std::vector<tools::StagePicture> stages =
+        tools::draw_stage_pictures(view_, cloud, det, d, truth_);
+    return tools::contact_sheet(stages, 4, caption).write_png(path, error);
+  }
+
+ private:
+  static std::string why(const estimator::HandrailDetection& d, bool is_false) {
+    if (is_false) {
+      return std::string("FALSE (") + estimator::to_string(d.state) + ", " +
+             std::to_string(d.inliers) + " inliers)";
+    }
+    std::string s = std::string("missed, ") + estimator::to_string(d.status);
+    if (d.status == estimator::DetectStatus::kNoLine) {
+      s += std::string(" (") + estimator::to_string(d.counts.first_rejection) + ")";
+    }
+    return s;
+  }
+
+  std::tuple<int, double, double> rank_{-1, 0.0, 0.0};
+  std::uint64_t frame_index_ = 0;
+  std::string reason_;
+  std::vector<hal::DepthPoint> points_;
+  hal::DepthFrame view_;
+  std::vector<tools::CameraSegment> truth_;
 };
 
 double valid_share(const pico_flexx::PipelineCounts& c) {
@@ -314,6 +399,7 @@ int main(int argc, char** argv) {
       }
       tools::Progress progress("hreval " + sc.name + (paths.size() > 1 ? " " + path : ""), n);
       hal::DepthFrame frame;
+      WorstFrame worst;
       for (std::size_t f = 0; f < n && camera.next(&frame); ++f) {
         const sim_hal::FrameTruth truth =
             sim_hal::compute_truth(sc.scene, cam, sc.T_world_cam[f], f);
@@ -324,16 +410,35 @@ int main(int argc, char** argv) {
             proposed.detect(cloud, estimator::Method::kProposed),
             basic.detect(cloud, estimator::Method::kBasic)};
         const std::pair<std::string, std::string> group(out.surface, length_label(truth, target));
+        const tools::Tally& scored = out.method[0].all;
+        const std::size_t false_before = scored.false_frames.size();
+        const std::size_t missed_before = scored.missed_frames.size();
         for (int m = 0; m < 2; ++m) {
           out.method[m].by_label[sc.pose_labels[f]].add(d[m], truth, target, reach_target);
           out.method[m].all.add(d[m], truth, target, reach_target);
           if (&out == &r) by_surface_length[m][group].add(d[m], truth, target, reach_target);
+        }
+        const bool is_false = scored.false_frames.size() > false_before;
+        if (&out == &r && (is_false || scored.missed_frames.size() > missed_before)) {
+          worst.consider(frame, truth, d[0], is_false, target, reach_target);
         }
         progress.update(f + 1);
       }
       if (const pico_flexx::RawDepthPipeline* p = camera.pipeline()) {
         out.tof = p->counts();
         out.tof_median_us = p->processing_median_us();
+      }
+      if (worst.any()) {
+        out.worst_frame = static_cast<std::int64_t>(worst.frame_index());
+        out.worst_reason = worst.reason();
+        const std::string picture = "worst/" + sc.name + ".png";
+        if (tools::make_output_dir(out_dir + "/worst", &error) &&
+            worst.write_picture(out_dir + "/" + picture, sc.name, cfg, &error)) {
+          out.worst_picture = picture;
+        } else {
+          std::fprintf(stderr, "hreval: %s: the worst frame's picture: %s\n", sc.name.c_str(),
+                       error.c_str());
+        }
       }
       const tools::Tally& p = out.method[0].all;
       progress.finish("detected " + pct(p.correct, p.target_frames) + ", false " +
@@ -471,8 +576,12 @@ int main(int argc, char** argv) {
      << "Per scenario and method: the frames with a target where the target was not found, the "
         "frames with a false detection, and what the detector reported over all frames (FOUND: "
         "the target or a handrail in view; FALSE: a detection that is not; NO_LINE with its "
-        "best line's first rejection).\n\n"
-     << "| scenario | method | missed frames | false frames | reasons |\n|---|---|---|---|---|\n";
+        "best line's first rejection). Worst frame, proposed method: the false detection with "
+        "the most line inliers, else the missed target in reach most in view (then the nearest), "
+        "else the missed target most in view; its picture shows every stage of the search that "
+        "gave the result, with the true centre lines in green.\n\n"
+     << "| scenario | method | missed frames | false frames | reasons | worst frame |\n"
+     << "|---|---|---|---|---|---|\n";
   for (const ScenarioResult& r : results) {
     for (int m = 0; m < 2; ++m) {
       const tools::Tally& t = r.method[m].all;
@@ -481,9 +590,14 @@ int main(int argc, char** argv) {
         if (!reasons.empty()) reasons += ", ";
         reasons += kv.first + " " + std::to_string(kv.second);
       }
+      std::string worst = "-";
+      if (m == 0 && r.worst_frame >= 0) {
+        worst = std::to_string(r.worst_frame) + ": " + r.worst_reason;
+        if (!r.worst_picture.empty()) worst = "[" + worst + "](" + r.worst_picture + ")";
+      }
       md << "| " << r.name << " | " << kMethodNames[m] << " | "
          << tools::frame_ranges(t.missed_frames) << " | " << tools::frame_ranges(t.false_frames)
-         << " | " << reasons << " |\n";
+         << " | " << reasons << " | " << worst << " |\n";
     }
   }
   const std::string report = md.str();

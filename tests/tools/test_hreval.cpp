@@ -1,0 +1,153 @@
+// hreval's report of failures (issue #17: which frames fail, why, and a
+// debug picture of each scenario's worst one), and a scenario file that
+// cannot be read reported while the others still run.
+//   argv[1]: the hreval program
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "child_process.hpp"
+#include "cmocka_cpp.hpp"
+
+namespace {
+
+std::string g_program;
+std::string g_dir;
+
+std::string source(const std::string& rel) {
+  const char* d = std::getenv("HRP_SOURCE_DIR");
+  return std::string(d ? d : ".") + "/" + rel;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Result {
+  int exit_status = -1;
+  std::string out;  // stdout and stderr together
+};
+
+Result run(const std::vector<std::string>& args) {
+  const std::string log = g_dir + "/out.txt";
+  Result r;
+  r.exit_status =
+      testing_support::wait_for_exit(testing_support::spawn_program(g_program, args, log));
+  r.out = read_file(log);
+  return r;
+}
+
+// A handrail standing in the air 2 m in front of the only wall, 0.6 and
+// then 0.5 m from the camera: in reach and fully in view, and far outside
+// the gap window of any surface in view, so every frame is a miss.
+std::string write_unfindable_scenario() {
+  const std::string path = g_dir + "/no-wall.json";
+  std::ofstream(path) << R"({"name": "no-wall", "description": "a handrail far off its wall",
+    "seed": 7, "frame_rate_hz": 5, "gripper_angle_deg": 90,
+    "scene": {"walls": [{"center": [-2, 0, 0], "normal": [1, 0, 0], "up": [0, 0, 1],
+                         "size": [8, 6], "reflectivity": 0.6}],
+              "handrails": [{"kind": "iss", "foot": [0, 0, 0], "normal": [1, 0, 0],
+                             "axis": [0, 1, 0], "length": 0.2}]},
+    "poses": [{"label": "near", "position": [0.6, 0.0, 0.0], "rpy_deg": [0, 0, 0], "frames": 2},
+              {"label": "nearer", "position": [0.5, 0.0, 0.0], "rpy_deg": [0, 0, 0],
+               "frames": 2}]})";
+  return path;
+}
+
+// The line of the failures table for `scenario` and `method`.
+std::string failure_row(const std::string& report, const std::string& scenario,
+                        const std::string& method) {
+  const std::string head = "| " + scenario + " | " + method + " |";
+  const std::size_t at = report.find(head, report.find("## Failures"));
+  if (at == std::string::npos) return "";
+  return report.substr(at, report.find('\n', at) - at);
+}
+
+// Width and height from a PNG's IHDR chunk; false if it is not a PNG.
+bool png_size(const std::string& bytes, unsigned* w, unsigned* h) {
+  if (bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) return false;
+  if (bytes.compare(12, 4, "IHDR") != 0) return false;
+  auto be32 = [&](std::size_t k) {
+    unsigned v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[k + i]);
+    return v;
+  };
+  *w = be32(16);
+  *h = be32(20);
+  return true;
+}
+
+void test_the_worst_frame_is_named_with_its_reason_and_drawn(void**) {
+  const std::string out = g_dir + "/worst";
+  const Result r = run({"--out", out, write_unfindable_scenario()});
+  assert_int_equal(r.exit_status, 0);
+  const std::string report = read_file(out + "/report.md");
+  const std::string row = failure_row(report, "no-wall", "proposed");
+  // All four frames missed; the worst is the first at 0.5 m (as fully in
+  // view as at 0.6 m, and nearer), with the detector's reason.
+  if (row.find("| 4: 0-3 |") == std::string::npos ||
+      row.find("[2: missed, ") == std::string::npos ||
+      row.find("](worst/no-wall.png) |") == std::string::npos) {
+    fail_msg("unexpected failures row: %s\nreport:\n%s", row.c_str(), report.c_str());
+  }
+  unsigned w = 0, h = 0;
+  assert_true(png_size(read_file(out + "/worst/no-wall.png"), &w, &h));
+  // Seven stage pictures of 3 x 224 by 3 x 171, four to a row, 6 px apart,
+  // under a two-line caption.
+  assert_int_equal(w, 4 * 672 + 5 * 6);
+  assert_int_equal(h, 8 + 2 * 20 + 2 * (513 + 6) + 6);
+}
+
+void test_a_scenario_without_failures_has_no_worst_frame(void**) {
+  const std::string out = g_dir + "/clean";
+  const Result r =
+      run({"--out", out, "--max-frames", "2", source("sim_hal/scenarios/table2-iss.json")});
+  assert_int_equal(r.exit_status, 0);
+  const std::string row = failure_row(read_file(out + "/report.md"), "table2-iss", "proposed");
+  if (row.find("| none | none |") == std::string::npos ||
+      row.compare(row.size() - 5, 5, "| - |") != 0) {
+    fail_msg("expected no failures and no worst frame: %s", row.c_str());
+  }
+  assert_int_not_equal(access((out + "/worst/table2-iss.png").c_str(), F_OK), 0);
+}
+
+void test_an_unreadable_scenario_is_reported_and_the_rest_still_run(void**) {
+  const std::string out = g_dir + "/partly";
+  const std::string missing = g_dir + "/no-such-scenario.json";
+  const Result r = run({"--out", out, missing, write_unfindable_scenario()});
+  assert_int_equal(r.exit_status, 1);
+  if (r.out.find(missing) == std::string::npos || r.out.find("(skipped)") == std::string::npos) {
+    fail_msg("the missing file should be named and skipped:\n%s", r.out.c_str());
+  }
+  assert_false(failure_row(read_file(out + "/report.md"), "no-wall", "proposed").empty());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s HREVAL\n", argv[0]);
+    return 2;
+  }
+  g_program = argv[1];
+  char dir[] = "/tmp/hrp_hreval_XXXXXX";
+  if (!mkdtemp(dir)) return 1;
+  g_dir = dir;
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_the_worst_frame_is_named_with_its_reason_and_drawn),
+      cmocka_unit_test(test_a_scenario_without_failures_has_no_worst_frame),
+      cmocka_unit_test(test_an_unreadable_scenario_is_reported_and_the_rest_still_run),
+  };
+  const int failed = cmocka_run_group_tests(tests, nullptr, nullptr);
+  const std::string cleanup = "rm -rf '" + g_dir + "'";
+  if (std::system(cleanup.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", dir);
+  return failed;
+}
