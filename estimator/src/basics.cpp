@@ -162,6 +162,7 @@ Workspace::Workspace(std::size_t n)
       signed_distance_m(new float[n]),
       plane_distance_m(new float[n]),
       gap_widen_m(new float[n]),
+      inverse_depth_per_m(new float[n]),
       flags(new std::uint8_t[n]),
       line_t_m(new float[n]),
       sample(kMaxRefitSamples),
@@ -187,7 +188,7 @@ Workspace::Workspace(std::size_t n)
       refit_z_m(new float[kMaxRefitSamples]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 7 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
+  return max_pixels * (sizeof(float) * 8 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
          3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
          sizeof(std::int32_t) * kMaxRefitSamples + 5 * 4 * kMaxWidth;
 }

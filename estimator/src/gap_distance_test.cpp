@@ -33,7 +33,7 @@ struct GapTestLimits {
 // widened by twice its standard deviation, the noise bounded to [0, 2 cm]
 // with NaN as 0, so no bad value can open the windows.
 Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* distance_m,
-                           float* widen_m) {
+                           float* widen_m, float* inverse_depth_per_m) {
   const Floats4 x = {p[0].x_m, p[1].x_m, p[2].x_m, p[3].x_m};
   const Floats4 y = {p[0].y_m, p[1].y_m, p[2].y_m, p[3].y_m};
   const Floats4 z = {p[0].z_m, p[1].z_m, p[2].z_m, p[3].z_m};
@@ -49,6 +49,8 @@ Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* d
   const Floats4 cap = {0.02f, 0.02f, 0.02f, 0.02f};
   const Floats4 widen = 2.0f * (positive < cap ? positive : cap);
   std::memcpy(widen_m, &widen, sizeof widen);
+  const Floats4 inverse_depth = 1.0f / z;  // exactly rounded, as the scalar division
+  std::memcpy(inverse_depth_per_m, &inverse_depth, sizeof inverse_depth);
   const Floats4 abs_s = s < zero ? -s : s;
   const Ints4 on_plane = valid & (abs_s < g.plane_inlier_m);
   // "On the wall" for the cross test's probes means not raised off it: a
@@ -150,18 +152,21 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
   const CloudPoint* points = cloud.points;
   float* distance_out = ws.signed_distance_m.get();
   float* widen_out = ws.gap_widen_m.get();
+  float* inverse_depth_out = ws.inverse_depth_per_m.get();
   const auto block = [&](std::size_t k) {
-    return classify_four_pixels(points + k, g, distance_out + k, widen_out + k);
+    return classify_four_pixels(points + k, g, distance_out + k, widen_out + k,
+                                inverse_depth_out + k);
   };
   const auto tail = [&](std::size_t k, std::size_t rest) {
     // Padded with invalid points (confidence 0), which count nowhere.
     CloudPoint padded[4] = {};
-    float distance[4], widen[4];
+    float distance[4], widen[4], inverse_depth[4];
     std::memcpy(padded, points + k, rest * sizeof(CloudPoint));
-    const Ints4 flags = classify_four_pixels(padded, g, distance, widen);
+    const Ints4 flags = classify_four_pixels(padded, g, distance, widen, inverse_depth);
     for (std::size_t j = 0; j < rest; ++j) {
       distance_out[k + j] = distance[j];
       widen_out[k + j] = widen[j];
+      inverse_depth_out[k + j] = inverse_depth[j];
     }
     return flags;
   };

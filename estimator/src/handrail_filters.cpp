@@ -227,9 +227,10 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
   RunCache runs(cloud, cfg, scale, ws);
   ws.cross.clear();
   AscendingPixels pixel_of(cloud);
+  const float* inverse_depth = ws.inverse_depth_per_m.get();
   for (std::int32_t i : ws.gap) {
     const Pixel q = pixel_of(i);
-    const float inv_z = 1.0f / cloud.points[i].z_m;
+    const float inv_z = inverse_depth[i];
     // The probes first: a few byte loads, where a run's width may need a
     // walk down a column.
     const bool x_ok = probe_on_wall(cloud, ws, q, 0, 1, round_to_int(fx_plus * inv_z)) &&

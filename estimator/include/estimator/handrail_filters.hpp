@@ -13,7 +13,8 @@ namespace estimator {
 // the bar's visible surface. It is the detector's one pass over every
 // pixel, so it also judges validity (setting the frame's flags afresh,
 // counting the valid pixels into *valid_pixels), writes the signed distance
-// to the wall (ws.signed_distance_m) and marks the wall's inliers
+// to the wall (ws.signed_distance_m) and each pixel's 1 / z
+// (ws.inverse_depth_per_m, for the cross test), and marks the wall's inliers
 // (kFlagPlane) and the pixels the cross test's probes accept as wall
 // (kFlagWall). cloud -> ws.gap; returns the number of wall inliers.
 std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
@@ -33,7 +34,8 @@ void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws);
 // Cross point test (eqs. 2, 3): both probes to either side of the pixel, in
 // image x or in image y, land on the wall. Probe offsets widen on the side
 // where the wall's tilt would put a leg. ws.gap -> ws.cross, and the
-// kFlagCrossX / kFlagCrossY bits say which direction passed.
+// kFlagCrossX / kFlagCrossY bits say which direction passed. Reads the
+// pixels' inverse depth written by gap_distance_test() on this cloud.
 void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& wall,
                       const PixelScale& scale, Workspace& ws);
 

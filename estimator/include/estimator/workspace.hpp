@@ -64,6 +64,11 @@ struct Workspace {
   // pixel's widening of the gap window (twice its bounded noise).
   std::unique_ptr<float[]> plane_distance_m;
   std::unique_ptr<float[]> gap_widen_m;
+  // 1 / z per pixel from the same pass (the cross test's probe offsets are
+  // metres over depth): one stream of floats the searches read back in
+  // ascending order, instead of a division and a load from the cloud's
+  // larger points per pixel and search.
+  std::unique_ptr<float[]> inverse_depth_per_m;
   std::unique_ptr<std::uint8_t[]> flags;  // PixelFlag bits
   std::unique_ptr<float[]> line_t_m;      // position along a line
   IndexList sample;  // valid pixels at a fixed stride, for the wall and the pixel scale
