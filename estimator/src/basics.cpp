@@ -38,6 +38,9 @@ const char* validate(const DetectorConfig& c) {
   if (!(h.bar_length_m > 0.05f && h.bar_length_m < 3.0f)) return "handrail.bar_length_m";
   if (!(c.min_range_m > 0.0f && c.max_range_m > c.min_range_m)) return "max_range_m";
   if (c.plane_iterations == 0 || c.plane_iterations > 10000) return "plane_iterations";
+  if (c.plane_max_iterations < c.plane_iterations || c.plane_max_iterations > 10000) {
+    return "plane_max_iterations";
+  }
   if (c.plane_score_samples < 50 || c.plane_score_samples > Workspace::kMaxScoreSamples) {
     return "plane_score_samples";
   }

@@ -171,6 +171,20 @@ Eigen::Vector3f sharpest_normal(Eigen::Vector3f n, const float* x, const float* 
   return n;
 }
 
+// How many triples to draw for a 99 % chance that one was all inliers,
+// given the best hypothesis's inlier share: log(0.01) / log(1 - w^3),
+// within [min_iterations, max_iterations].
+std::uint32_t ransac_iterations(float inlier_share, std::uint32_t min_iterations,
+                                std::uint32_t max_iterations) {
+  constexpr double kLogMissChance = -4.605170185988091;  // log(0.01)
+  const double all_in = static_cast<double>(inlier_share) * inlier_share * inlier_share;
+  if (!(all_in > 0.0)) return max_iterations;
+  if (all_in >= 1.0) return min_iterations;
+  const double needed = std::ceil(kLogMissChance / std::log1p(-all_in));
+  if (needed >= static_cast<double>(max_iterations)) return max_iterations;
+  return std::max(min_iterations, static_cast<std::uint32_t>(needed));
+}
+
 }  // namespace
 
 bool fit_plane_least_squares(const OrganizedCloud& cloud, const std::int32_t* indices,
@@ -221,7 +235,8 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
 
   Plane best;
   std::uint32_t best_score = 0;
-  for (std::uint32_t it = 0; it < cfg.plane_iterations; ++it) {
+  std::uint32_t iterations = cfg.plane_max_iterations;  // until a hypothesis is scored
+  for (std::uint32_t it = 0; it < iterations; ++it) {
     const std::uint32_t i = rng.below(m32), j = rng.below(m32), k = rng.below(m32);
     Plane hypothesis;
     if (!plane_from_triple({rx[i], ry[i], rz[i]}, {rx[j], ry[j], rz[j]}, {rx[k], ry[k], rz[k]},
@@ -234,6 +249,8 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
     if (score > best_score) {
       best_score = score;
       best = hypothesis;
+      iterations = ransac_iterations(static_cast<float>(score) / static_cast<float>(m_score),
+                                     cfg.plane_iterations, cfg.plane_max_iterations);
     }
   }
   if (best_score < cfg.plane_min_inlier_fraction * static_cast<float>(m_score)) return result;

@@ -53,6 +53,7 @@ constexpr FloatKey kFloatKeys[] = {
 };
 constexpr UintKey kUintKeys[] = {
     {"plane_iterations", &estimator::DetectorConfig::plane_iterations},
+    {"plane_max_iterations", &estimator::DetectorConfig::plane_max_iterations},
     {"plane_score_samples", &estimator::DetectorConfig::plane_score_samples},
     {"line_iterations", &estimator::DetectorConfig::line_iterations},
     {"line_score_samples", &estimator::DetectorConfig::line_score_samples},
