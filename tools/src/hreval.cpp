@@ -5,7 +5,6 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -13,18 +12,17 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "common/frame_convert.hpp"
 #include "common/progress.hpp"
-#include "common/stage_pictures.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "eval_chart.hpp"
 #include "eval_metrics.hpp"
 #include "output_dir.hpp"
 #include "sim_camera_path.hpp"
 #include "sim_hal/scenario.hpp"
+#include "worst_frame.hpp"
 
 // The flight configuration's use case (fsw_app/config/fsw_app.json).
 constexpr const char* kUseCase = "MODE_9_5FPS_2000";
@@ -74,84 +72,6 @@ struct ScenarioResult {
   // failed, and its picture (relative to the output folder; empty if none).
   std::int64_t worst_frame = -1;
   std::string worst_reason, worst_picture;
-};
-
-// The proposed method's worst failure in a scenario, kept (a copy of the
-// frame) to be drawn once the scenario has run. A false detection is the
-// worst kind, since the arm would go for it, and the more line inliers the
-// worse; then a missed target in reach, the more of it visible and the
-// nearer the worse; then a missed target out of reach.
-class WorstFrame {
- public:
-  void consider(const hal::DepthFrame& frame, const sim_hal::FrameTruth& truth,
-                const estimator::HandrailDetection& d, bool is_false, int target,
-                int reach_target) {
-    std::tuple<int, double, double> rank;
-    if (is_false) {
-      rank = {3, d.inliers, 0.0};
-    } else {
-      const int t = reach_target >= 0 ? reach_target : target;
-      const sim_hal::HandrailTruth& h = truth.handrails[static_cast<std::size_t>(t)];
-      rank = {reach_target >= 0 ? 2 : 1, h.visible_fraction, -h.visible_center_cam.norm()};
-    }
-    if (rank <= rank_) return;
-    rank_ = rank;
-    frame_index_ = truth.frame;
-    reason_ = why(d, is_false);
-    const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
-    points_.assign(frame.points, frame.points + n);
-    view_ = frame;
-    view_.points = points_.data();
-    truth_.clear();
-    for (const sim_hal::HandrailTruth& h : truth.handrails) {
-      truth_.emplace_back(h.ends_cam[0], h.ends_cam[1]);
-    }
-  }
-  bool any() const { return std::get<0>(rank_) >= 0; }
-  std::uint64_t frame_index() const { return frame_index_; }
-  const std::string& reason() const { return reason_; }
-
-  // Runs the detector on the frame again, its workspace showing the search
-  // that gave the result, and writes the stage pictures as one sheet with
-  // the true centre lines in green. The detector draws each frame's random
-  // streams from its frame id, so the result is the one scored.
-  bool write_picture(const std::string& path, const std::string& scenario,
-                     estimator::DetectorConfig cfg, std::string* error) const {
-    cfg.workspace_shows_result = true;
-    estimator::HandrailDetector det(cfg);
-    std::vector<estimator::CloudPoint> buffer;
-    const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(view_, &buffer);
-    const estimator::HandrailDetection d = det.detect(cloud, estimator::Method::kProposed);
-    std::string caption = scenario + " FRAME " + std::to_string(frame_index_) + ": " + reason_;
-    std::transform(caption.begin(), caption.end(), caption.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-    caption +=
-        "\nGREEN: TRUE CENTRE LINES. WHITE: THE DETECTED ONE, RED ITS WALL NORMAL. DOTS: ITS "
-        "ENDS (MAGENTA: SEEN)";
-    const std::vector<tools::StagePicture> stages =
-        tools::draw_stage_pictures(view_, cloud, det, d, truth_);
-    return tools::contact_sheet(stages, 4, caption).write_png(path, error);
-  }
-
- private:
-  static std::string why(const estimator::HandrailDetection& d, bool is_false) {
-    if (is_false) {
-      return std::string("FALSE (") + estimator::to_string(d.state) + ", " +
-             std::to_string(d.inliers) + " inliers)";
-    }
-    std::string s = std::string("missed, ") + estimator::to_string(d.status);
-    if (d.status == estimator::DetectStatus::kNoLine) {
-      s += std::string(" (") + estimator::to_string(d.counts.first_rejection) + ")";
-    }
-    return s;
-  }
-
-  std::tuple<int, double, double> rank_{-1, 0.0, 0.0};
-  std::uint64_t frame_index_ = 0;
-  std::string reason_;
-  std::vector<hal::DepthPoint> points_;
-  hal::DepthFrame view_;
-  std::vector<tools::CameraSegment> truth_;
 };
 
 double valid_share(const pico_flexx::PipelineCounts& c) {
@@ -399,7 +319,7 @@ int main(int argc, char** argv) {
       }
       tools::Progress progress("hreval " + sc.name + (paths.size() > 1 ? " " + path : ""), n);
       hal::DepthFrame frame;
-      WorstFrame worst;
+      tools::WorstFrame worst;
       for (std::size_t f = 0; f < n && camera.next(&frame); ++f) {
         const sim_hal::FrameTruth truth =
             sim_hal::compute_truth(sc.scene, cam, sc.T_world_cam[f], f);
