@@ -18,16 +18,12 @@
 
 #include "child_process.hpp"
 #include "cmocka_cpp.hpp"
+#include "test_data.hpp"
 
 namespace {
 
 std::string g_program;
 std::string g_dir;
-
-std::string source(const std::string& rel) {
-  const char* d = std::getenv("HRP_SOURCE_DIR");
-  return std::string(d ? d : ".") + "/" + rel;
-}
 
 struct Result {
   int exit_status = -1;
@@ -74,7 +70,7 @@ void expect_in(const Result& r, const std::string& text) {
   }
 }
 
-const std::string kGood = source("tests/data/table2-iss-1.pcd");
+const std::string kGood = testing_support::source_path("tests/data/table2-iss-1.pcd");
 
 void test_a_device_is_refused_and_the_next_file_processed(void**) {
   const Result r = run({"/dev/zero", kGood});
@@ -166,9 +162,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   g_program = argv[1];
-  char dir[] = "/tmp/hrp_hrdetect_XXXXXX";
-  if (!mkdtemp(dir)) return 1;
-  g_dir = dir;
+  const testing_support::ScratchDir scratch("hrp_hrdetect");
+  if (scratch.path().empty()) return 1;
+  g_dir = scratch.path();
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_a_device_is_refused_and_the_next_file_processed),
       cmocka_unit_test(test_a_fifo_and_a_folder_named_pcd_are_refused_not_waited_on),
@@ -177,8 +173,5 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_results_that_cannot_be_written_are_an_error),
       cmocka_unit_test(test_mounts_are_reported_when_asked),
   };
-  const int failed = cmocka_run_group_tests(tests, nullptr, nullptr);
-  const std::string cleanup = "rm -rf '" + g_dir + "'";
-  if (std::system(cleanup.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", dir);
-  return failed;
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -13,23 +13,12 @@
 
 #include "child_process.hpp"
 #include "cmocka_cpp.hpp"
+#include "test_data.hpp"
 
 namespace {
 
 std::string g_program;
 std::string g_dir;
-
-std::string source(const std::string& rel) {
-  const char* d = std::getenv("HRP_SOURCE_DIR");
-  return std::string(d ? d : ".") + "/" + rel;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 struct Result {
   int exit_status = -1;
@@ -41,7 +30,7 @@ Result run(const std::vector<std::string>& args) {
   Result r;
   r.exit_status =
       testing_support::wait_for_exit(testing_support::spawn_program(g_program, args, log));
-  r.out = read_file(log);
+  r.out = testing_support::read_text(log);
   return r;
 }
 
@@ -89,7 +78,7 @@ void test_the_worst_frame_is_named_with_its_reason_and_drawn(void**) {
   const std::string out = g_dir + "/worst";
   const Result r = run({"--out", out, write_unfindable_scenario()});
   assert_int_equal(r.exit_status, 0);
-  const std::string report = read_file(out + "/report.md");
+  const std::string report = testing_support::read_text(out + "/report.md");
   const std::string row = failure_row(report, "no-wall", "proposed");
   // All four frames missed; the worst is the first at 0.5 m (as fully in
   // view as at 0.6 m, and nearer), with the detector's reason.
@@ -99,7 +88,7 @@ void test_the_worst_frame_is_named_with_its_reason_and_drawn(void**) {
     fail_msg("unexpected failures row: %s\nreport:\n%s", row.c_str(), report.c_str());
   }
   unsigned w = 0, h = 0;
-  assert_true(png_size(read_file(out + "/worst/no-wall.png"), &w, &h));
+  assert_true(png_size(testing_support::read_text(out + "/worst/no-wall.png"), &w, &h));
   // Seven stage pictures of 3 x 224 by 3 x 171, four to a row, 6 px apart,
   // under a two-line caption.
   assert_int_equal(w, 4 * 672 + 5 * 6);
@@ -108,10 +97,11 @@ void test_the_worst_frame_is_named_with_its_reason_and_drawn(void**) {
 
 void test_a_scenario_without_failures_has_no_worst_frame(void**) {
   const std::string out = g_dir + "/clean";
-  const Result r =
-      run({"--out", out, "--max-frames", "2", source("sim_hal/scenarios/table2-iss.json")});
+  const Result r = run({"--out", out, "--max-frames", "2",
+                        testing_support::source_path("sim_hal/scenarios/table2-iss.json")});
   assert_int_equal(r.exit_status, 0);
-  const std::string row = failure_row(read_file(out + "/report.md"), "table2-iss", "proposed");
+  const std::string row =
+      failure_row(testing_support::read_text(out + "/report.md"), "table2-iss", "proposed");
   if (row.find("| none | none |") == std::string::npos ||
       row.compare(row.size() - 5, 5, "| - |") != 0) {
     fail_msg("expected no failures and no worst frame: %s", row.c_str());
@@ -127,7 +117,8 @@ void test_an_unreadable_scenario_is_reported_and_the_rest_still_run(void**) {
   if (r.out.find(missing) == std::string::npos || r.out.find("(skipped)") == std::string::npos) {
     fail_msg("the missing file should be named and skipped:\n%s", r.out.c_str());
   }
-  assert_false(failure_row(read_file(out + "/report.md"), "no-wall", "proposed").empty());
+  assert_false(
+      failure_row(testing_support::read_text(out + "/report.md"), "no-wall", "proposed").empty());
 }
 
 }  // namespace
@@ -138,16 +129,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   g_program = argv[1];
-  char dir[] = "/tmp/hrp_hreval_XXXXXX";
-  if (!mkdtemp(dir)) return 1;
-  g_dir = dir;
+  const testing_support::ScratchDir scratch("hrp_hreval");
+  if (scratch.path().empty()) return 1;
+  g_dir = scratch.path();
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_the_worst_frame_is_named_with_its_reason_and_drawn),
       cmocka_unit_test(test_a_scenario_without_failures_has_no_worst_frame),
       cmocka_unit_test(test_an_unreadable_scenario_is_reported_and_the_rest_still_run),
   };
-  const int failed = cmocka_run_group_tests(tests, nullptr, nullptr);
-  const std::string cleanup = "rm -rf '" + g_dir + "'";
-  if (std::system(cleanup.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", dir);
-  return failed;
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
 }
