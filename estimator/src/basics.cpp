@@ -92,6 +92,15 @@ const char* validate(const DetectorConfig& c) {
   if (c.max_mount_hypotheses == 0 || c.max_mount_hypotheses > kMaxMountHypotheses) {
     return "max_mount_hypotheses";
   }
+  if (c.front_peak_mounts > kMaxMountHypotheses - c.max_mount_hypotheses) {
+    return "front_peak_mounts";
+  }
+  if (!(c.profile_min_obliquity_deg >= 0.0f && c.profile_min_obliquity_deg <= 90.0f)) {
+    return "profile_min_obliquity_deg";
+  }
+  if (!(c.profile_min_spread_m >= 0.0f && c.profile_min_spread_m < 0.2f)) {
+    return "profile_min_spread_m";
+  }
   if (c.handrail_type_count > kMaxHandrailTypes) return "handrail_types";
   for (std::uint32_t k = 0; k < c.handrail_type_count; ++k) {
     const float length = c.handrail_types[k].bar_length_m;
@@ -134,6 +143,8 @@ const char* to_string(LineVerdict verdict) {
       return "NO_MOUNT_BESIDE";
     case LineVerdict::kRampEnd:
       return "RAMP_END";
+    case LineVerdict::kShallowProfile:
+      return "SHALLOW_PROFILE";
     case LineVerdict::kBeamLength:
       return "BEAM_LENGTH";
   }

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "estimator/bar_profile.hpp"
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
 #include "estimator/handrail_types.hpp"
@@ -195,6 +196,10 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   const MountBeside beside =
       measure_mount_beside(cloud, cfg_, ws_, wall_, *line, line->mount_offset_m - search_mount_m_);
   if (!mount_shows_beside(beside, cfg_)) return LineVerdict::kNoMountBeside;
+  // Seen from its side, a bar shows its side face; a cable only its top.
+  if (!profile_fits_bar(measure_bar_profile(ws_, wall_, *line, inliers), cfg_)) {
+    return LineVerdict::kShallowProfile;
+  }
   float drop_m[2] = {0.0f, 0.0f};
   // The front's height in the search's distances (from its wall, not the
   // mount the line was seated on).
@@ -315,6 +320,13 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   std::uint32_t tried = 0, best_slot = kDominant, last_slot = kDominant;
   for (std::uint32_t n = 0; n < searches; ++n) {
     const std::uint32_t slot = order[n];
+    // A mount read off a bar-front peak stands in for a face too small to
+    // make a surface peak: it is searched only while no mount has held a
+    // handrail (it costs a whole search, and a find is already the best
+    // of what the surfaces offer).
+    const bool front_peak_mount =
+        slot != kDominant && slot + mounts_.front_peak_count >= mounts_.count;
+    if (front_peak_mount && best.status == DetectStatus::kFound) continue;
     HandrailDetection attempt = *out;
     if (slot == kDominant) {
       strict_mount_ = true;

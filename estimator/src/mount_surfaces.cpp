@@ -17,6 +17,13 @@ struct Histogram {
 
   float center_m(int b) const { return lo_m + (static_cast<float>(b) + 0.5f) * kMountBinM; }
   int bin_of(float s_m) const { return static_cast<int>(std::floor((s_m - lo_m) / kMountBinM)); }
+  // Bin b's count with its two neighbours'.
+  std::uint32_t smoothed(int b) const {
+    std::uint32_t n = count[b];
+    if (b > 0) n += count[b - 1];
+    if (b + 1 < bins) n += count[b + 1];
+    return n;
+  }
   // Pixels with distances in [lo, hi].
   std::uint32_t sum(float lo, float hi) const {
     int b0 = bin_of(lo), b1 = bin_of(hi);
@@ -62,12 +69,6 @@ void fill_histogram(const OrganizedCloud& cloud, const DetectorConfig& cfg, cons
 // an empty bay, with enough pixels; each at the mean of its five bins.
 std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
                                  std::uint32_t valid_pixels, float peak_m[kMaxSurfacePeaks]) {
-  const auto smoothed = [&h](int b) {
-    std::uint32_t n = h.count[b];
-    if (b > 0) n += h.count[b - 1];
-    if (b + 1 < h.bins) n += h.count[b + 1];
-    return n;
-  };
   const float min_pixels = cfg.mount_min_fraction * static_cast<float>(valid_pixels);
   std::uint32_t peaks = 0;
   for (int b = 1; b + 1 < h.bins && peaks < kMaxSurfacePeaks; ++b) {
@@ -76,8 +77,8 @@ std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
     const bool near = std::fabs(at_m) <= cfg.mount_search_m;
     const bool bay_front = at_m >= cfg.mount_bay_min_m && at_m <= cfg.mount_bay_max_m;
     if (!near && !bay_front) continue;
-    const std::uint32_t c = smoothed(b);
-    if (static_cast<float>(c) < min_pixels || c < smoothed(b - 1) || c <= smoothed(b + 1)) {
+    const std::uint32_t c = h.smoothed(b);
+    if (static_cast<float>(c) < min_pixels || c < h.smoothed(b - 1) || c <= h.smoothed(b + 1)) {
       continue;
     }
     double weighted = 0.0, total = 0.0;
@@ -89,6 +90,50 @@ std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
     peak_m[peaks++] = static_cast<float>(weighted / total);
   }
   return peaks;
+}
+
+// Mounts read off bar-front peaks: a face that holds a handrail may hold
+// too few pixels to make a surface peak of its own (a rack's 11 cm frame
+// seen obliquely, in the noisy shoulder of the dominant plane's peak), while
+// the bar's front over it makes a peak where no surface mount puts one.
+// The strongest such peaks (most pixels in the front window), as mounts
+// past the surface mounts' capacity, each within the range the surface
+// mounts come from (mount_search_m of the plane, plus a seat track's step)
+// and none within two histogram resolutions of a mount already there or of
+// the plane. The verdict on a line found over one is unchanged: it must
+// still be seated on a surface in view or beside it.
+void add_front_peak_mounts(const Histogram& h, const DetectorConfig& cfg, float front_m,
+                           MountHypotheses* out) {
+  const auto explained = [&](float mount_m) {
+    if (std::fabs(mount_m) < 2.0f * kSameMountM) return true;
+    for (std::uint32_t k = 0; k < out->count; ++k) {
+      if (std::fabs(out->offset_m[k] - mount_m) < 2.0f * kSameMountM) return true;
+    }
+    return false;
+  };
+  for (std::uint32_t added = 0; added < cfg.front_peak_mounts; ++added) {
+    if (out->count >= kMaxMountHypotheses) return;
+    float best_m = 0.0f;
+    std::uint32_t best_pixels = 0;
+    for (int b = 1; b + 1 < h.bins; ++b) {
+      const float mount_m = h.center_m(b) - front_m;
+      if (mount_m < -cfg.mount_search_m || mount_m > cfg.mount_search_m + cfg.mount_step_m) {
+        continue;
+      }
+      const std::uint32_t c = h.smoothed(b);
+      if (c < h.smoothed(b - 1) || c <= h.smoothed(b + 1)) continue;  // not a local maximum
+      const std::uint32_t pixels =
+          h.sum(mount_m + front_m - kFrontWindowM, mount_m + front_m + kFrontWindowM);
+      if (pixels < cfg.min_line_inliers || pixels <= best_pixels || explained(mount_m)) continue;
+      best_m = mount_m;
+      best_pixels = pixels;
+    }
+    if (best_pixels == 0) return;
+    out->offset_m[out->count] = best_m;
+    out->front_pixels[out->count] = best_pixels;
+    ++out->count;
+    ++out->front_peak_count;
+  }
 }
 
 void add_mount(float offset_m, std::uint32_t front_pixels, std::uint32_t capacity,
@@ -143,6 +188,7 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
       if (n >= cfg.min_line_inliers) add_mount(mount, n, capacity, &out);
     }
   }
+  add_front_peak_mounts(h, cfg, front, &out);
   // Nothing anywhere looks like a bar's front: the dominant plane alone, so
   // that the frame is judged (and its reason given) as on a flat wall.
   if (out.count == 0) add_mount(0.0f, front_pixels(0.0f), capacity, &out);

@@ -133,6 +133,42 @@ void test_a_small_surface_is_no_surface(void**) {
   assert_false(has_surface(m, -0.025f));
 }
 
+// A rack's face seen obliquely can hold too few pixels for a surface peak
+// (here 0.4 % of the view, 1.6 cm proud of the plane) while the bar on the
+// seat track over it makes a peak of its own: the mount is read off the
+// bar's front, past the surface mounts. With front_peak_mounts 0 it is not.
+void test_a_face_too_small_for_a_peak_is_found_under_its_bar(void**) {
+  const float track_m = 0.016f + 0.013f;
+  const DistanceFrame f(
+      {{0.0f, 0.6f}, {-0.03f, 0.2f}, {0.016f, 0.004f}, {track_m + kFront, 0.006f}});
+  DetectorConfig cfg;
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_false(has_surface(m, 0.016f));
+  bool found = false;
+  for (std::uint32_t k = 0; k < m.count; ++k) {
+    found |= std::fabs(m.offset_m[k] - track_m) < 0.0025f;
+  }
+  assert_true(found);
+  assert_true(m.count <= cfg.max_mount_hypotheses + cfg.front_peak_mounts);
+  cfg.front_peak_mounts = 0;
+  const MountHypotheses none = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  for (std::uint32_t k = 0; k < none.count; ++k) {
+    assert_true(std::fabs(none.offset_m[k] - track_m) >= 0.0025f);
+  }
+}
+
+// A front peak whose mount would lie farther behind the plane than any
+// surface mount may (mount_search_m, 5.2 cm): a structure, not a bar's
+// front over a face in view.
+void test_a_front_peak_too_far_behind_the_plane_is_no_mount(void**) {
+  const float behind_m = -0.06f;
+  const DistanceFrame f({{0.0f, 0.7f}, {behind_m + kFront, 0.01f}});
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, DetectorConfig{}, f.ws);
+  for (std::uint32_t k = 0; k < m.count; ++k) {
+    assert_true(std::fabs(m.offset_m[k] - behind_m) >= 0.005f);
+  }
+}
+
 void test_huge_and_not_finite_distances_are_ignored(void**) {
   DistanceFrame f({{0.0f, 0.5f}});
   const std::size_t n = f.cloud.size();
@@ -436,6 +472,15 @@ void test_bad_mount_and_type_settings_are_named(void**) {
   cfg = DetectorConfig{};
   cfg.handrail_type_count = kMaxHandrailTypes + 1;
   assert_string_equal(validate(cfg), "handrail_types");
+  cfg = DetectorConfig{};
+  cfg.front_peak_mounts = kMaxMountHypotheses - cfg.max_mount_hypotheses + 1;
+  assert_string_equal(validate(cfg), "front_peak_mounts");
+  cfg = DetectorConfig{};
+  cfg.profile_min_obliquity_deg = 95.0f;
+  assert_string_equal(validate(cfg), "profile_min_obliquity_deg");
+  cfg = DetectorConfig{};
+  cfg.profile_min_spread_m = NAN;
+  assert_string_equal(validate(cfg), "profile_min_spread_m");
   assert_null(validate(DetectorConfig{}));
 }
 
@@ -448,6 +493,8 @@ int main() {
       cmocka_unit_test(test_rack_faces_in_front_of_an_empty_bay_are_mounts),
       cmocka_unit_test(test_no_bar_anywhere_leaves_the_plane),
       cmocka_unit_test(test_a_small_surface_is_no_surface),
+      cmocka_unit_test(test_a_face_too_small_for_a_peak_is_found_under_its_bar),
+      cmocka_unit_test(test_a_front_peak_too_far_behind_the_plane_is_no_mount),
       cmocka_unit_test(test_huge_and_not_finite_distances_are_ignored),
       cmocka_unit_test(test_the_mount_under_a_bar),
       cmocka_unit_test(test_the_mount_shows_beside_a_handrail),

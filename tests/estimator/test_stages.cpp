@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cmocka_cpp.hpp"
+#include "estimator/bar_profile.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
@@ -446,6 +447,60 @@ void test_config_validation_names_the_field(void**) {
   assert_string_equal(validate(cfg), "max_range_m");
 }
 
+// The profile test's two measures on known numbers: the obliquity across
+// the bar from the ray to the line's visible middle, and the 10th to 90th
+// percentile of the inliers' heights. The ISS bar seen 25 deg from its side
+// shows heights down its side face and passes; a cable's top half (the
+// same front, 1 cm deep) does not; face-on (10 deg) or with a round bar
+// geometry the test says nothing.
+void test_bar_profile(void**) {
+  Workspace ws(1000);
+  IndexList inliers(1000);
+  Plane wall;
+  wall.normal = Eigen::Vector3f(0.0f, 0.0f, -1.0f);  // a wall at z = 0.6 facing the camera
+  wall.d = 0.6f;
+  CenterLine line;
+  line.axis = Eigen::Vector3f::UnitX();  // across the bar: image y
+  line.t_min_m = -0.2f;
+  line.t_max_m = 0.2f;
+  const auto place_middle = [&](float obliquity_deg) {
+    const float z = 0.6f - 0.07f;
+    line.point = Eigen::Vector3f(0.0f, z * std::tan(obliquity_deg * 3.14159265f / 180.0f), z);
+  };
+  const auto fill_heights = [&](float lowest_m, float highest_m) {
+    inliers.clear();
+    for (int k = 0; k < 200; ++k) {
+      ws.signed_distance_m[k] = lowest_m + (highest_m - lowest_m) * static_cast<float>(k) / 199.0f;
+      inliers.push(k);
+    }
+  };
+  DetectorConfig cfg;  // the ISS bar
+  place_middle(25.0f);
+  fill_heights(0.044f, 0.0785f);  // down the side face to the bar's back
+  BarProfile p = measure_bar_profile(ws, wall, line, inliers);
+  assert_near(p.obliquity_rad, 25.0f * 3.14159265f / 180.0f, 1e-4f);
+  assert_near(p.spread_m, 0.8f * (0.0785f - 0.044f), 0.0015f);
+  assert_int_equal(p.count, 200);
+  assert_true(profile_fits_bar(p, cfg));
+  fill_heights(0.0685f, 0.0785f);  // a 2 cm cable's top half
+  p = measure_bar_profile(ws, wall, line, inliers);
+  assert_near(p.spread_m, 0.008f, 0.0015f);
+  assert_false(profile_fits_bar(p, cfg));
+  place_middle(10.0f);
+  p = measure_bar_profile(ws, wall, line, inliers);
+  assert_true(profile_fits_bar(p, cfg));  // face-on enough: no verdict
+  place_middle(25.0f);
+  cfg.handrail = paper_round_handrail();
+  assert_true(profile_fits_bar(measure_bar_profile(ws, wall, line, inliers), cfg));
+  // Along the bar the view's angle is no obliquity across it.
+  line.axis = Eigen::Vector3f::UnitY();
+  assert_near(measure_bar_profile(ws, wall, line, inliers).obliquity_rad, 0.0f, 1e-4f);
+  inliers.clear();
+  p = measure_bar_profile(ws, wall, line, inliers);
+  assert_int_equal(p.count, 0);
+  assert_true(profile_fits_bar(p, DetectorConfig{}));
+}
+
 }  // namespace
 
 int main() {
@@ -465,6 +520,7 @@ int main() {
       cmocka_unit_test(test_target_pose),
       cmocka_unit_test(test_handrail_state),
       cmocka_unit_test(test_config_validation_names_the_field),
+      cmocka_unit_test(test_bar_profile),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

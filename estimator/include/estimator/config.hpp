@@ -76,6 +76,11 @@ struct DetectorConfig {
   float mount_step_m = 0.013f;
   float mount_min_fraction = 0.01f;  // of the valid pixels, for a surface peak
   std::uint32_t max_mount_hypotheses = 3;
+  // Mounts read off the bar's front instead (mount_surfaces.hpp): the
+  // strongest peaks of the histogram where a bar's front face could stand
+  // over a mount no surface peak offers, searched after those and only
+  // while none of them has held a handrail.
+  std::uint32_t front_peak_mounts = 1;
   // A handrail found with this many line inliers ends the search over
   // mounts; with fewer, the other mounts are searched too.
   std::uint32_t mount_accept_inliers = 120;
@@ -123,6 +128,13 @@ struct DetectorConfig {
   // (shortest_partial_bar_m, verify_candidate).
   float min_visible_fraction = 0.35f;
   float front_height_tolerance_m = 0.004f;  // bar front face vs geometry
+  // The bar's profile (bar_profile.hpp): seen at least this far from
+  // face-on across the bar, the line's inliers must spread at least this
+  // far in height above the wall (10th to 90th percentile). The ISS bar's
+  // side face then shows down to its back, 3.5 cm below its front; a round
+  // cable shows at most its radius (1.25 cm for the thickest).
+  float profile_min_obliquity_deg = 20.0f;
+  float profile_min_spread_m = 0.017f;
   std::uint32_t min_line_inliers = 25;
 
   // Selection by the gripper's angle psi_p: 0 = handrails along image y.

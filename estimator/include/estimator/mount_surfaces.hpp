@@ -33,6 +33,9 @@ struct MountHypotheses {
   float offset_m[kMaxMountHypotheses] = {};
   // Pixels where that mount puts the bar's front face.
   std::uint32_t front_pixels[kMaxMountHypotheses] = {};
+  // How many of the mounts, the last ones, were read off bar-front peaks
+  // rather than surfaces (add_front_peak_mounts).
+  std::uint32_t front_peak_count = 0;
   // ... and where the dominant plane itself puts it.
   std::uint32_t dominant_front_pixels = 0;
 };

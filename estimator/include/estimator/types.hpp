@@ -28,14 +28,15 @@ const char* to_string(DetectStatus status);
 // Why the verification of a line candidate rejected it.
 enum class LineVerdict : std::uint8_t {
   kAccepted,
-  kTooFewPoints,   // its cluster is smaller than min_line_inliers
-  kWrongHeight,    // its front face is not where the bar's is
-  kNoCenterLine,   // degenerate points
-  kTooShort,       // visible part shorter than shortest_partial_bar_m()
-  kTooLong,        // longer than b_H,max
-  kBeamLength,     // both ends seen, length outside b_H,min..b_H,max
-  kNoMountBeside,  // the surface it would stand on is not beside it
-  kRampEnd,        // a seen end comes down in a ramp, not at a leg
+  kTooFewPoints,    // its cluster is smaller than min_line_inliers
+  kWrongHeight,     // its front face is not where the bar's is
+  kNoCenterLine,    // degenerate points
+  kTooShort,        // visible part shorter than shortest_partial_bar_m()
+  kTooLong,         // longer than b_H,max
+  kBeamLength,      // both ends seen, length outside b_H,min..b_H,max
+  kNoMountBeside,   // the surface it would stand on is not beside it
+  kRampEnd,         // a seen end comes down in a ramp, not at a leg
+  kShallowProfile,  // seen from its side, no deeper than a cable (bar_profile.hpp)
 };
 const char* to_string(LineVerdict verdict);
 

@@ -38,6 +38,8 @@ constexpr FloatKey kFloatKeys[] = {
     {"min_visible_length_m", &estimator::DetectorConfig::min_visible_length_m},
     {"min_visible_fraction", &estimator::DetectorConfig::min_visible_fraction},
     {"front_height_tolerance_m", &estimator::DetectorConfig::front_height_tolerance_m},
+    {"profile_min_obliquity_deg", &estimator::DetectorConfig::profile_min_obliquity_deg},
+    {"profile_min_spread_m", &estimator::DetectorConfig::profile_min_spread_m},
     {"end_search_m", &estimator::DetectorConfig::end_search_m},
     {"end_drop_max_m", &estimator::DetectorConfig::end_drop_max_m},
     {"target_standoff_m", &estimator::DetectorConfig::target_standoff_m},
@@ -62,6 +64,7 @@ constexpr UintKey kUintKeys[] = {
     {"max_width", &estimator::DetectorConfig::max_width},
     {"max_height", &estimator::DetectorConfig::max_height},
     {"max_mount_hypotheses", &estimator::DetectorConfig::max_mount_hypotheses},
+    {"front_peak_mounts", &estimator::DetectorConfig::front_peak_mounts},
     {"mount_accept_inliers", &estimator::DetectorConfig::mount_accept_inliers},
     {"mount_beside_min_pixels", &estimator::DetectorConfig::mount_beside_min_pixels},
 };
