@@ -178,6 +178,28 @@ void render_scene(const sim_hal::Scene& scene, const Eigen::Isometry3d& T_world_
   r->cloud = tools::to_estimator_cloud(frame, &r->buffer);
 }
 
+// A flat wall (x = 0, facing +x, z up), 4 x 3 m.
+sim_hal::Scene flat_wall_scene() {
+  sim_hal::Scene s;
+  s.add_wall(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 4.0, 3.0);
+  return s;
+}
+
+// That wall with a 0.55 m ISS handrail along y on a seat track (2.6 cm
+// wide, 1.3 cm proud) that runs on 15 cm past both its ends.
+sim_hal::Scene rail_on_seat_track_scene() {
+  sim_hal::Scene s = flat_wall_scene();
+  constexpr double kTrackProud_m = 0.013, kTrackWidth_m = 0.026;
+  s.add_box(Eigen::Vector3d(0.5 * kTrackProud_m, 0.0, 0.0), Eigen::Matrix3d::Identity(),
+            Eigen::Vector3d(kTrackProud_m, 0.55 + 0.30, kTrackWidth_m));
+  sim_hal::Handrail rail;
+  rail.kind = sim_hal::HandrailKind::kIss;
+  rail.axis = Eigen::Vector3d::UnitY();
+  rail.foot_center = Eigen::Vector3d(kTrackProud_m, 0.0, 0.0);
+  s.add_handrail(rail);
+  return s;
+}
+
 // Renders the scene from T_world_cam and says whether the detector finds a
 // handrail there with both ends seen.
 bool found_with_both_ends(const sim_hal::Scene& scene, const Eigen::Isometry3d& T_world_cam,
@@ -189,11 +211,7 @@ bool found_with_both_ends(const sim_hal::Scene& scene, const Eigen::Isometry3d& 
 }
 
 void test_handrail_like_cable_is_refused_for_its_ramps(void**) {
-  sim_hal::Scene cable_scene, rail_scene;
-  for (sim_hal::Scene* s : {&cable_scene, &rail_scene}) {
-    s->add_wall(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 4.0,
-                3.0);
-  }
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = flat_wall_scene();
   // Centre 7 cm off the wall, front 8 cm: the bar's front is 7.85 cm.
   cable_scene.add_cable({Eigen::Vector3d(0.01, -0.35, 0.0), Eigen::Vector3d(0.07, -0.2, 0.0),
                          Eigen::Vector3d(0.07, 0.2, 0.0), Eigen::Vector3d(0.01, 0.35, 0.0)},
@@ -241,22 +259,10 @@ void test_handrail_like_cable_is_refused_for_its_ramps(void**) {
 // wall; the development frames where it did not, and why the count now
 // starts at the bar's mount, are in sim_hal/README.md).
 void test_short_ramps_are_refused_and_a_seat_track_is_no_ramp(void**) {
-  sim_hal::Scene cable_scene, rail_scene;
-  for (sim_hal::Scene* s : {&cable_scene, &rail_scene}) {
-    s->add_wall(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 4.0,
-                3.0);
-  }
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = rail_on_seat_track_scene();
   cable_scene.add_cable({Eigen::Vector3d(0.01, -0.28, 0.0), Eigen::Vector3d(0.07, -0.2, 0.0),
                          Eigen::Vector3d(0.07, 0.2, 0.0), Eigen::Vector3d(0.01, 0.28, 0.0)},
                         0.02);
-  constexpr double kTrackProud_m = 0.013, kTrackWidth_m = 0.026;
-  rail_scene.add_box(Eigen::Vector3d(0.5 * kTrackProud_m, 0.0, 0.0), Eigen::Matrix3d::Identity(),
-                     Eigen::Vector3d(kTrackProud_m, 0.55 + 0.30, kTrackWidth_m));
-  sim_hal::Handrail rail;
-  rail.kind = sim_hal::HandrailKind::kIss;
-  rail.axis = Eigen::Vector3d::UnitY();
-  rail.foot_center = Eigen::Vector3d(kTrackProud_m, 0.0, 0.0);
-  rail_scene.add_handrail(rail);
   estimator::DetectorConfig cfg;
   cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
   estimator::HandrailDetector detector(cfg);
@@ -301,20 +307,8 @@ void test_short_ramps_are_refused_and_a_seat_track_is_no_ramp(void**) {
 // is taken for a handrail). An ISS handrail on a seat track seen the same
 // way is found.
 void test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar(void**) {
-  sim_hal::Scene cable_scene, rail_scene;
-  for (sim_hal::Scene* s : {&cable_scene, &rail_scene}) {
-    s->add_wall(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 4.0,
-                3.0);
-  }
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = rail_on_seat_track_scene();
   cable_scene.add_cable({Eigen::Vector3d(0.07, -1.5, 0.0), Eigen::Vector3d(0.07, 1.5, 0.0)}, 0.02);
-  constexpr double kTrackProud_m = 0.013, kTrackWidth_m = 0.026;
-  rail_scene.add_box(Eigen::Vector3d(0.5 * kTrackProud_m, 0.0, 0.0), Eigen::Matrix3d::Identity(),
-                     Eigen::Vector3d(kTrackProud_m, 0.55 + 0.30, kTrackWidth_m));
-  sim_hal::Handrail rail;
-  rail.kind = sim_hal::HandrailKind::kIss;
-  rail.axis = Eigen::Vector3d::UnitY();
-  rail.foot_center = Eigen::Vector3d(kTrackProud_m, 0.0, 0.0);
-  rail_scene.add_handrail(rail);
   estimator::DetectorConfig cfg;
   cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
   estimator::DetectorConfig no_profile_test = cfg;
