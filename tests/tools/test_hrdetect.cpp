@@ -151,6 +151,7 @@ void test_mounts_are_reported_when_asked(void**) {
   expect_in(r, "\"d_m\":0.");
   expect_in(r, "\"surfaces_m\":[");
   expect_in(r, "\"plane_front_pixels\":");
+  expect_in(r, ",\"front_peak_mounts\":");
   assert_true(r.out.find("}}\n") != std::string::npos);
 }
 

@@ -120,20 +120,24 @@ void test_mounts_json(void**) {
   m.surface_m[0] = -0.0203f;
   m.surface_m[1] = 0.0017f;
   m.surface_m[2] = 0.5f;  // not found: not written
-  m.count = 1;
+  m.count = 2;
   m.offset_m[0] = 0.0147f;
   m.front_pixels[0] = 296;
+  m.offset_m[1] = 0.0283f;  // read off a bar-front peak
+  m.front_pixels[1] = 410;
+  m.front_peak_count = 1;
   m.dominant_front_pixels = 2;
   assert_string_equal(tools::mounts_to_json(plane, m).c_str(),
                       "{\"plane\":{\"normal\":[0.00000,0.60000,-0.80000],\"d_m\":0.6125},"
-                      "\"surfaces_m\":[-0.0203,0.0017],\"offsets_m\":[0.0147],"
-                      "\"front_pixels\":[296],\"plane_front_pixels\":2}");
+                      "\"surfaces_m\":[-0.0203,0.0017],\"offsets_m\":[0.0147,0.0283],"
+                      "\"front_pixels\":[296,410],\"plane_front_pixels\":2,"
+                      "\"front_peak_mounts\":1}");
   // None found (a frame without a plane): empty lists.
   assert_string_equal(
       tools::mounts_to_json(estimator::Plane{}, estimator::MountHypotheses{}).c_str(),
       "{\"plane\":{\"normal\":[0.00000,0.00000,0.00000],\"d_m\":0.0000},"
       "\"surfaces_m\":[],\"offsets_m\":[],\"front_pixels\":[],"
-      "\"plane_front_pixels\":0}");
+      "\"plane_front_pixels\":0,\"front_peak_mounts\":0}");
 }
 
 void test_image_text_and_png(void**) {

@@ -96,7 +96,9 @@ std::string mounts_to_json(const estimator::Plane& dominant, const estimator::Mo
   for (std::uint32_t k = 0; k < mounts; ++k) {
     s += (k ? "," : "") + std::to_string(m.front_pixels[k]);
   }
-  s += "],\"plane_front_pixels\":" + std::to_string(m.dominant_front_pixels) + "}";
+  s += "],\"plane_front_pixels\":" + std::to_string(m.dominant_front_pixels);
+  // The last this many of offsets_m were read off bar-front peaks.
+  s += ",\"front_peak_mounts\":" + std::to_string(std::min(m.front_peak_count, mounts)) + "}";
   return s;
 }
 
