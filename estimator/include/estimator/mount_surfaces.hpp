@@ -49,7 +49,9 @@ constexpr float kMountBinM = 0.0025f;
 // gap distance pass wrote for every pixel; -infinity where invalid). The
 // dominant plane itself (offset 0) is always a hypothesis, so a flat wall
 // is tried as before; a hypothesis needs at least min_line_inliers front
-// pixels unless it is that one.
+// pixels unless it is that one. Past the surface mounts, up to
+// front_peak_mounts more are read off bar-front peaks that no surface
+// mount explains (the last front_peak_count of them).
 MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const DetectorConfig& cfg,
                                       const Workspace& ws);
 
