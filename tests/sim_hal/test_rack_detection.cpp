@@ -200,6 +200,20 @@ sim_hal::Scene rail_on_seat_track_scene() {
   return s;
 }
 
+// A handrail-like cable's frames: how often the detector takes it, how
+// often its best line is refused for `verdict`, and how often a detector
+// without that test takes it.
+struct CableCounts {
+  int found = 0, refused = 0, found_lenient = 0;
+  void add(const estimator::OrganizedCloud& cloud, estimator::HandrailDetector& detector,
+           estimator::HandrailDetector& lenient, estimator::LineVerdict verdict) {
+    const estimator::HandrailDetection d = detector.detect(cloud);
+    found += d.status == estimator::DetectStatus::kFound ? 1 : 0;
+    refused += d.counts.first_rejection == verdict ? 1 : 0;
+    found_lenient += lenient.detect(cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
+  }
+};
+
 // Renders the scene from T_world_cam and says whether the detector finds a
 // handrail there with both ends seen.
 bool found_with_both_ends(const sim_hal::Scene& scene, const Eigen::Isometry3d& T_world_cam,
@@ -226,27 +240,24 @@ void test_handrail_like_cable_is_refused_for_its_ramps(void**) {
   no_ramp_test.end_drop_max_m = 1.0f;
   estimator::HandrailDetector detector(cfg), lenient(no_ramp_test);
   Rendered r;
-  int cable_found = 0, cable_found_lenient = 0, ramp_refusals = 0, rail_found = 0, frames = 0;
+  CableCounts cable;
+  int rail_found = 0, frames = 0;
   for (std::size_t f = 0; f < 5; ++f) {
     const Eigen::Isometry3d T = sim_hal::camera_pose(
         Eigen::Vector3d(0.65 + 0.03 * static_cast<double>(f), 0.02 * static_cast<double>(f), 0.0),
         -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
     ++frames;
     render_scene(cable_scene, T, f, &r);
-    const estimator::HandrailDetection d = detector.detect(r.cloud);
-    cable_found += d.status == estimator::DetectStatus::kFound ? 1 : 0;
-    ramp_refusals += d.counts.first_rejection == estimator::LineVerdict::kRampEnd ? 1 : 0;
-    cable_found_lenient +=
-        lenient.detect(r.cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
+    cable.add(r.cloud, detector, lenient, estimator::LineVerdict::kRampEnd);
     rail_found += found_with_both_ends(rail_scene, T, f, detector, &r) ? 1 : 0;
   }
   std::printf(
       "handrail-like cable: found %d of %d (%d refused for a ramp end; %d found without "
       "the ramp test); the handrail there: %d of %d, both ends\n",
-      cable_found, frames, ramp_refusals, cable_found_lenient, rail_found, frames);
-  assert_int_equal(cable_found, 0);
-  assert_true(ramp_refusals >= 3);
-  assert_true(cable_found_lenient >= 3);
+      cable.found, frames, cable.refused, cable.found_lenient, rail_found, frames);
+  assert_int_equal(cable.found, 0);
+  assert_true(cable.refused >= 3);
+  assert_true(cable.found_lenient >= 3);
   assert_int_equal(rail_found, frames);
 }
 
@@ -315,7 +326,8 @@ void test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar(void**) {
   no_profile_test.profile_min_spread_m = 0.0f;
   estimator::HandrailDetector detector(cfg), lenient(no_profile_test);
   Rendered r;
-  int cable_found = 0, cable_found_lenient = 0, shallow = 0, rail_found = 0, frames = 0;
+  CableCounts cable;
+  int rail_found = 0, frames = 0;
   for (std::size_t f = 0; f < 6; ++f) {
     // Above or below the bar (across it), 0.55 to 0.65 m out: 25 to 30 deg.
     const double k = static_cast<double>(f % 3), side = f < 3 ? 1.0 : -1.0;
@@ -324,21 +336,17 @@ void test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar(void**) {
         position, -position.normalized(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
     ++frames;
     render_scene(cable_scene, T, f, &r);
-    const estimator::HandrailDetection d = detector.detect(r.cloud);
-    cable_found += d.status == estimator::DetectStatus::kFound ? 1 : 0;
-    shallow += d.counts.first_rejection == estimator::LineVerdict::kShallowProfile ? 1 : 0;
-    cable_found_lenient +=
-        lenient.detect(r.cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
+    cable.add(r.cloud, detector, lenient, estimator::LineVerdict::kShallowProfile);
     render_scene(rail_scene, T, f, &r);
     rail_found += detector.detect(r.cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
   }
   std::printf(
       "handrail-like cable seen from its side: found %d of %d (%d refused as too shallow; %d "
       "found without the profile test); the handrail there: %d of %d\n",
-      cable_found, frames, shallow, cable_found_lenient, rail_found, frames);
-  assert_int_equal(cable_found, 0);
-  assert_true(shallow >= frames - 1);
-  assert_true(cable_found_lenient >= frames - 1);
+      cable.found, frames, cable.refused, cable.found_lenient, rail_found, frames);
+  assert_int_equal(cable.found, 0);
+  assert_true(cable.refused >= frames - 1);
+  assert_true(cable.found_lenient >= frames - 1);
   assert_int_equal(rail_found, frames);
 }
 
