@@ -101,6 +101,13 @@ const char* validate(const DetectorConfig& c) {
   if (!(c.profile_min_spread_m >= 0.0f && c.profile_min_spread_m < 0.2f)) {
     return "profile_min_spread_m";
   }
+  if (!(c.clearance_low_m > 0.0f && c.clearance_low_m < c.clearance_high_m)) {
+    return "clearance_low_m";
+  }
+  if (!(c.clearance_high_m <= gap_min_m(c))) return "clearance_high_m";
+  if (!(c.clearance_max_solid_fraction > 0.0f && c.clearance_max_solid_fraction <= 1.0f)) {
+    return "clearance_max_solid_fraction";
+  }
   if (c.handrail_type_count > kMaxHandrailTypes) return "handrail_types";
   for (std::uint32_t k = 0; k < c.handrail_type_count; ++k) {
     const float length = c.handrail_types[k].bar_length_m;
@@ -145,6 +152,8 @@ const char* to_string(LineVerdict verdict) {
       return "RAMP_END";
     case LineVerdict::kShallowProfile:
       return "SHALLOW_PROFILE";
+    case LineVerdict::kSolidBelow:
+      return "SOLID_BELOW";
     case LineVerdict::kBeamLength:
       return "BEAM_LENGTH";
   }
@@ -194,6 +203,8 @@ Workspace::Workspace(std::size_t n)
       column_run_width_m(new float[kMaxWidth]),
       column_run_peak_m(new float[kMaxWidth]),
       column_run_base_m(new float[kMaxWidth]),
+      column_wall_pair_next(new std::int16_t[n]),
+      row_wall_pair_next(new std::int16_t[kMaxWidth]),
       score_x_m(new float[kMaxScoreSamples]),
       score_y_m(new float[kMaxScoreSamples]),
       score_z_m(new float[kMaxScoreSamples]),
@@ -202,9 +213,11 @@ Workspace::Workspace(std::size_t n)
       refit_z_m(new float[kMaxRefitSamples]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 8 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7) +
+  return max_pixels * (sizeof(float) * 8 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7 +
+                       sizeof(std::int16_t)) +
          3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
-         sizeof(std::int32_t) * kMaxRefitSamples + 5 * 4 * kMaxWidth;
+         sizeof(std::int32_t) * kMaxRefitSamples + 5 * 4 * kMaxWidth +
+         sizeof(std::int16_t) * kMaxWidth;
 }
 
 }  // namespace estimator

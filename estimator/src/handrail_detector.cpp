@@ -5,6 +5,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "estimator/bar_clearance.hpp"
 #include "estimator/bar_profile.hpp"
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
@@ -200,6 +201,10 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   if (!profile_fits_bar(measure_bar_profile(ws_, wall_, *line, inliers), cfg_)) {
     return LineVerdict::kShallowProfile;
   }
+  // A bar has a grip's clearance under it; a fin or a box edge is solid.
+  const BarClearance clearance = measure_bar_clearance(cloud, cfg_, scale_, ws_, *line, inliers,
+                                                       line->mount_offset_m - search_mount_m_);
+  if (!clearance_fits_bar(clearance, cfg_)) return LineVerdict::kSolidBelow;
   float drop_m[2] = {0.0f, 0.0f};
   // The front's height in the search's distances (from its wall, not the
   // mount the line was seated on).
@@ -255,12 +260,17 @@ bool HandrailDetector::along_gripper(const HandrailDetection& d) const {
   return std::fabs(psi_rad - cfg_.gripper_angle_rad) <= kQuarterPi;
 }
 
-// The better of two finds over mounts: along the gripper first, then more
+// The better of two finds over mounts: along the gripper first, then one
+// with an end in view over one with none (its ends passed the leg and ramp
+// tests; a find with no end in view may be a rack edge's fin running out of
+// the view both ways, which beats a short bar on inliers alone), then more
 // line inliers.
 bool HandrailDetector::better_find(const HandrailDetection& a, const HandrailDetection& b) const {
   if (b.status != DetectStatus::kFound) return true;
   const bool a_along = along_gripper(a), b_along = along_gripper(b);
   if (a_along != b_along) return a_along;
+  const bool a_ends = a.state != HandrailState::kNoEnd, b_ends = b.state != HandrailState::kNoEnd;
+  if (a_ends != b_ends) return a_ends;
   return a.inliers > b.inliers;
 }
 
@@ -295,11 +305,11 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   // (a rack wall, where the flat-wall search mostly fails). A handrail found
   // with at least mount_accept_inliers line inliers ends the search; a
   // weaker one (a fragment, or a far bar) is kept while the others run, and
-  // the best supported wins: on a wrong mount the real bar fails the height
-  // tests, while a short piece of clutter may pass them. As in Algorithm 1,
-  // a find within 45 deg of the gripper's angle beats one across it (a cable
-  // crossing the view on the dominant plane must not hide the rail on its
-  // seat track), and only such a find ends the search. A frame with none
+  // the best (better_find) wins: on a wrong mount the real bar fails the
+  // height tests, while a short piece of clutter may pass them. As in
+  // Algorithm 1, a find within 45 deg of the gripper's angle beats one
+  // across it (a cable crossing the view on the dominant plane must not hide
+  // the rail on its seat track), and only such a find ends the search. A frame with none
   // reports what the flat-wall search found (its status and counts).
   constexpr std::uint32_t kDominant = kMaxMountHypotheses;
   std::uint32_t order[kMaxMountHypotheses + 1];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace estimator {
 namespace {
@@ -43,24 +44,162 @@ float clamp_noise(float noise_m) {
   return positive < 0.02f ? positive : 0.02f;
 }
 
-// Probes for the wall `offset_px` pixels away along (drow, dcol). A probe
-// that lands outside the image (a bar near the image's edge) or on an
-// invalid pixel (a dark or flying pixel at the bar's edge) moves back toward
-// the bar and judges the first valid pixel, but never comes closer than half
-// the offset: nearer, it could land on the bar itself.
-bool probe_on_wall(const OrganizedCloud& cloud, const Workspace& ws, Pixel q, int drow, int dcol,
-                   int offset_px) {
-  // One unsigned comparison per axis rejects both sides of the image.
-  const unsigned width = cloud.width, height = cloud.height;
-  const std::uint8_t* flags = ws.flags.get();
-  int r = q.row + drow * offset_px, c = q.col + dcol * offset_px;
-  for (int k = offset_px; k >= (offset_px + 1) / 2; --k, r -= drow, c -= dcol) {
-    if (static_cast<unsigned>(r) >= height || static_cast<unsigned>(c) >= width) continue;
-    const std::uint8_t f = flags[static_cast<unsigned>(r) * width + static_cast<unsigned>(c)];
-    if (f & kFlagValid) return (f & kFlagWall) != 0;
+// The cross test's probes for the wall beside a bar. A probe searches a
+// segment of its row or column: from `offset` pixels out back toward the
+// bar, but never nearer than half the offset (nearer, it could land on the
+// bar itself). It finds the wall where two pixels in a row of the segment
+// are flagged on it (not raised off the searched surface); past the image's
+// edge a pixel counts as wall (a bar near the edge has only its inner side
+// in view), an invalid pixel does not. The search does not stop at the
+// first thing it meets: on a rack wall the probe's spot often lies on a
+// taller face or a rack's edge beside the track, with the gap or the face
+// the track stands on between it and the bar. Two pixels, not one, because
+// a noisy raised surface (a wall seen at grazing incidence) has single
+// pixels scattered below its level.
+//
+// Along a row the wall pixels are a bitset (one bit per pixel, from the
+// flags' wall bit eight pixels at a time), and so are the pairs' first
+// pixels: a probe tests a few words. Down the columns every pixel holds the
+// first row at or below it that starts a pair, filled for the whole image a
+// row at a time from the bottom up, eight columns per vector operation.
+class WallPairs {
+ public:
+  WallPairs(const OrganizedCloud& cloud, Workspace& ws)
+      : flags_(ws.flags.get()),
+        width_(static_cast<int>(cloud.width)),
+        height_(static_cast<int>(cloud.height)),
+        column_next_(ws.column_wall_pair_next.get()) {}
+
+  // The probe from pixel (row, col) along its row, toward higher columns
+  // (sign 1) or lower (-1), offset_px pixels out.
+  bool along_row(int row, int col, int sign, int offset_px) {
+    if (row != row_) fill_row(row);
+    const int near = (offset_px + 1) / 2;
+    // Toward higher columns the search runs from the far end down: a pair
+    // (j, j + 1) with j in [lo, hi - 1], the row's last pixel pairing with
+    // what lies past it.
+    if (sign > 0) {
+      const int lo = col + near, hi = std::min(col + offset_px - 1, width_ - 1);
+      return lo <= hi && any_bit(row_pairs_, lo, hi);
+    }
+    // Toward lower columns it runs from the far end up: a pair (j - 1, j)
+    // with j in [lo + 1, hi], pixel 0 pairing with what lies before it.
+    const int lo = col - offset_px, hi = col - near;
+    const int first = std::max(lo + 1, 0);
+    if (first > hi) return false;
+    if (first == 0 && (row_walls_[0] & 1u)) return true;
+    const int from = std::max(first, 1) - 1;
+    return from <= hi - 1 && any_bit(row_pairs_, from, hi - 1);
   }
-  return false;
-}
+
+  // The same down the pixel's column (sign 1: toward higher rows).
+  bool along_column(int row, int col, int sign, int offset_px) {
+    if (!columns_filled_) fill_columns();
+    const int near = (offset_px + 1) / 2;
+    const std::int16_t* next = column_next_ + col;
+    if (sign > 0) {
+      const int lo = row + near, hi = std::min(row + offset_px - 1, height_ - 1);
+      return lo <= hi && next[lo * width_] <= hi;
+    }
+    const int lo = row - offset_px, hi = row - near;
+    const int first = std::max(lo + 1, 0);
+    if (first > hi) return false;
+    if (first == 0 && (flags_[col] & kFlagWall)) return true;
+    const int from = std::max(first, 1) - 1;
+    return from <= hi - 1 && next[from * width_] <= hi - 1;
+  }
+
+ private:
+  static constexpr int kWords = static_cast<int>(Workspace::kMaxWidth / 64) + 1;
+
+  // Whether any bit in [a, b] (a <= b) is set.
+  static bool any_bit(const std::uint64_t* bits, int a, int b) {
+    const int wa = a >> 6, wb = b >> 6;
+    const std::uint64_t low = ~0ull << (a & 63);
+    const std::uint64_t high = ~0ull >> (63 - (b & 63));
+    if (wa == wb) return (bits[wa] & low & high) != 0;
+    if (bits[wa] & low) return true;
+    for (int w = wa + 1; w < wb; ++w) {
+      if (bits[w]) return true;
+    }
+    return (bits[wb] & high) != 0;
+  }
+
+  void fill_row(int row) {
+    const std::uint8_t* f = flags_ + static_cast<std::size_t>(row) * width_;
+    const int words = (width_ + 64) / 64;  // room for the bit past the end
+    for (int w = 0; w < words; ++w) row_walls_[w] = 0;
+    int c = 0;
+    for (; c + 8 <= width_; c += 8) {
+      // The wall bit (bit 7) of eight bytes gathered into one byte, pixel
+      // c in its lowest bit (the bytes loaded little-endian, as on the host
+      // and the BeagleBone).
+      static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "pixel c is the lowest byte");
+      std::uint64_t eight;
+      std::memcpy(&eight, f + c, sizeof eight);
+      const std::uint64_t gathered =
+          ((eight & 0x8080808080808080ull) >> 7) * 0x0102040810204080ull >> 56;
+      row_walls_[c >> 6] |= gathered << (c & 63);
+    }
+    for (; c < width_; ++c) {
+      if (f[c] & kFlagWall) row_walls_[c >> 6] |= 1ull << (c & 63);
+    }
+    // Past the row's end counts as wall.
+    row_walls_[width_ >> 6] |= 1ull << (width_ & 63);
+    for (int w = 0; w < words; ++w) {
+      const std::uint64_t next_word = w + 1 < words ? row_walls_[w + 1] : 0;
+      row_pairs_[w] = row_walls_[w] & ((row_walls_[w] >> 1) | (next_word << 63));
+    }
+    row_ = row;
+  }
+
+  // next[r][c]: the first row r' >= r where pixels (r', c) and (r' + 1, c)
+  // are both wall, the last row pairing with what lies below the image
+  // (height_ if none).
+  void fill_columns() {
+    typedef std::int16_t Shorts8 __attribute__((vector_size(16)));
+    typedef std::uint8_t Bytes8 __attribute__((vector_size(8)));
+    const int last = height_ - 1;
+    std::int16_t* bottom = column_next_ + static_cast<std::size_t>(last) * width_;
+    const std::uint8_t* f = flags_ + static_cast<std::size_t>(last) * width_;
+    for (int c = 0; c < width_; ++c) {
+      bottom[c] = static_cast<std::int16_t>((f[c] & kFlagWall) ? last : height_);
+    }
+    for (int r = last - 1; r >= 0; --r) {
+      std::int16_t* next = column_next_ + static_cast<std::size_t>(r) * width_;
+      const std::int16_t* below = next + width_;
+      const std::uint8_t* here = flags_ + static_cast<std::size_t>(r) * width_;
+      const std::uint8_t* under = here + width_;
+      const std::int16_t row_index = static_cast<std::int16_t>(r);
+      int c = 0;
+      for (; c + 8 <= width_; c += 8) {
+        Bytes8 a, b;
+        Shorts8 down;
+        std::memcpy(&a, here + c, sizeof a);
+        std::memcpy(&b, under + c, sizeof b);
+        std::memcpy(&down, below + c, sizeof down);
+        constexpr std::int16_t kWallBit = kFlagWall;
+        const Shorts8 both = __builtin_convertvector(a & b, Shorts8) & kWallBit;
+        const Shorts8 zero = {0, 0, 0, 0, 0, 0, 0, 0};
+        const Shorts8 here_index = zero + row_index;
+        const Shorts8 out = both != zero ? here_index : down;
+        std::memcpy(next + c, &out, sizeof out);
+      }
+      for (; c < width_; ++c) {
+        next[c] = (here[c] & under[c] & kFlagWall) ? row_index : below[c];
+      }
+    }
+    columns_filled_ = true;
+  }
+
+  const std::uint8_t* flags_;
+  int width_, height_;
+  std::int16_t* column_next_;
+  std::uint64_t row_walls_[kWords];
+  std::uint64_t row_pairs_[kWords];
+  int row_ = -1;
+  bool columns_filled_ = false;
+};
 
 struct RaisedRun {
   float width_m = -1.0f;  // < 0: the run leaves the image, width unknown
@@ -225,19 +364,20 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
   const float width_max = cfg.side_width_max_ratio * std::fmax(h.bar_width_m, h.bar_depth_m);
   auto plausible = [&](float width_m) { return width_m > width_min && width_m < width_max; };
   RunCache runs(cloud, cfg, scale, ws);
+  WallPairs walls(cloud, ws);
   ws.cross.clear();
   AscendingPixels pixel_of(cloud);
   const float* inverse_depth = ws.inverse_depth_per_m.get();
   for (std::int32_t i : ws.gap) {
     const Pixel q = pixel_of(i);
     const float inv_z = inverse_depth[i];
-    // The probes first: a few byte loads, where a run's width may need a
-    // walk down a column.
-    const bool x_ok = probe_on_wall(cloud, ws, q, 0, 1, round_to_int(fx_plus * inv_z)) &&
-                      probe_on_wall(cloud, ws, q, 0, -1, round_to_int(fx_minus * inv_z)) &&
+    // The probes first, each a lookup; a run's width may need a walk down
+    // a column.
+    const bool x_ok = walls.along_row(q.row, q.col, 1, round_to_int(fx_plus * inv_z)) &&
+                      walls.along_row(q.row, q.col, -1, round_to_int(fx_minus * inv_z)) &&
                       plausible(runs.row(q).width_m);
-    bool y_ok = probe_on_wall(cloud, ws, q, 1, 0, round_to_int(fy_plus * inv_z)) &&
-                probe_on_wall(cloud, ws, q, -1, 0, round_to_int(fy_minus * inv_z));
+    bool y_ok = walls.along_column(q.row, q.col, 1, round_to_int(fy_plus * inv_z)) &&
+                walls.along_column(q.row, q.col, -1, round_to_int(fy_minus * inv_z));
     if (y_ok) {
       float column_width = 0.0f, column_peak = 0.0f;
       runs.column(q, &column_width, &column_peak);

@@ -5,7 +5,8 @@ this after changing it (python3 generate.py) and commit both.
 python3 generate.py --dev DIR writes a development set instead: the rack-wall
 scenarios with every layout drawn from other seeds (and other sensor noise),
 approaches to four other rails in Columbus (other rack edges, other
-lengths: COLUMBUS_DEV_RAILS) and a flat wall with seeded clutter
+lengths: COLUMBUS_DEV_RAILS), views along and across Columbus from other
+places (columbus_views()) and a flat wall with seeded clutter
 (flat_clutter()), named dev-*, into DIR (not committed). Work on the
 detector is tried there; the shipped scenarios stay the ones it is judged on, so that no threshold is
 fitted to the scenes that score it.
@@ -129,11 +130,12 @@ ASSETS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets"
 def write(s):
     if DEV_DIR is not None:
         # Only the rack walls, whose layouts come from the seeds, the
-        # Columbus approaches to the development rails (other rack edges of
-        # the module, surveyed below) and the seeded flat-wall clutter. Mesh
+        # Columbus approaches and views around the development rails (other
+        # rack edges of the module, surveyed below; the views from other
+        # places) and the seeded flat-wall clutter. Mesh
         # paths made absolute, the files living elsewhere.
         dev_scene = s["name"].startswith("rack-") and "control" not in s["name"]
-        if not (dev_scene or s["name"] in ("columbus-approaches", "flat-clutter")):
+        if not (dev_scene or s["name"] in ("columbus-approaches", "columbus-module-views", "flat-clutter")):
             return
         text = json.dumps(s).replace('"../assets/', '"' + os.path.normpath(ASSETS) + '/')
         s = json.loads(text)
@@ -669,6 +671,18 @@ def columbus_views():
               "frames": 30, "to": {"position": [0.1, 4.5, 0.1], "rpy_deg": [0, 0, 0]}},
              {"label": "columbus-look-overhead", "position": [0.0, 4.8, -0.6], "facing": [0, -1, 1.2], "up": [0, -1.2, -1],
               "rpy_deg": [0, 0, 90], "frames": 30, "to": {"position": [0.1, 2.5, -0.7], "rpy_deg": [0, 0, 90]}}]
+    if DEV_DIR is not None:
+        # The development set's views: from the other ends of the module,
+        # the other way along it, other tilts.
+        poses = [{"label": "columbus-look-starboard", "position": [-0.2, 4.4, 0.1], "facing": [0.8, -1, 0],
+                  "rpy_deg": [0, 0, -10], "frames": 30, "to": {"position": [-0.3, 3.0, 0.0], "rpy_deg": [0, -5, 20]}},
+                 {"label": "columbus-look-port", "position": [0.3, 1.5, -0.1], "facing": [-0.8, 1, 0],
+                  "rpy_deg": [0, 0, 10], "frames": 30, "to": {"position": [0.4, 2.8, -0.2], "rpy_deg": [0, 5, -20]}},
+                 {"label": "columbus-look-deck", "position": [0.1, 4.2, 0.3], "facing": [0, -1, -1], "up": [0, -1, 1],
+                  "frames": 30, "to": {"position": [0.0, 1.8, 0.2], "rpy_deg": [0, 0, 15]}},
+                 {"label": "columbus-look-overhead", "position": [-0.1, 1.6, -0.5], "facing": [0, 1, 1.2],
+                  "up": [0, 1.2, -1], "rpy_deg": [0, 0, 90], "frames": 30,
+                  "to": {"position": [0.0, 3.8, -0.6], "rpy_deg": [0, 5, 80]}}]
     return {"name": "columbus-module-views",
             "description": "Inside the Columbus laboratory, the camera looking along and across the module at its rack "
                            "walls, deck and overhead with four handrails on seat tracks among them (30 frames a "

@@ -481,6 +481,15 @@ void test_bad_mount_and_type_settings_are_named(void**) {
   cfg = DetectorConfig{};
   cfg.profile_min_spread_m = NAN;
   assert_string_equal(validate(cfg), "profile_min_spread_m");
+  cfg = DetectorConfig{};
+  cfg.clearance_low_m = 0.04f;  // above the band's top
+  assert_string_equal(validate(cfg), "clearance_low_m");
+  cfg = DetectorConfig{};
+  cfg.clearance_high_m = 0.05f;  // into the gap window: the bar's own pixels
+  assert_string_equal(validate(cfg), "clearance_high_m");
+  cfg = DetectorConfig{};
+  cfg.clearance_max_solid_fraction = 0.0f;
+  assert_string_equal(validate(cfg), "clearance_max_solid_fraction");
   assert_null(validate(DetectorConfig{}));
 }
 

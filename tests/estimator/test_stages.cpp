@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cmocka_cpp.hpp"
+#include "estimator/bar_clearance.hpp"
 #include "estimator/bar_profile.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "estimator/handrail_filters.hpp"
@@ -323,6 +324,46 @@ void test_side_width_front_window_allows_deeper_faces_only_when_asked(void**) {
   assert_int_equal(side_pixels(kOffset + 0.015, 0.0, kDeeper), 0);
 }
 
+// The cross test's probes on a rack wall: a face 3 cm proud of the wall
+// (not wall, not at the bar's height) stands 7 cm beside the bar, where the
+// right-hand probe lands (8.5 cm out). The wall between the bar and the
+// face is in the probe's segment (half the offset out to all of it), and
+// the bar passes. With the face's pixels left on the wall only every other
+// column (a noisy raised surface), no two wall pixels stand in a row and
+// the bar fails.
+std::uint8_t bar_flags_beside_face(bool speckled) {
+  SyntheticScene s = bar_scene();
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(s, &pts);
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    CloudPoint& p = pts[k];
+    const bool on_wall = std::fabs(p.z_m - kWall) < 1e-4;
+    const double face_from_m = speckled ? 0.025 : 0.07;
+    if (!on_wall || p.x_m < face_from_m || p.x_m > 0.25) continue;
+    if (speckled && (k % 160) % 2 == 0) continue;
+    const float scale = static_cast<float>((kWall - 0.03) / kWall);
+    p.x_m *= scale;
+    p.y_m *= scale;
+    p.z_m *= scale;
+  }
+  const DetectorConfig cfg = test_config();
+  Workspace ws(cloud.size());
+  PixelScale scale;
+  const Plane wall = run_filters(cloud, cfg, ws, &scale);
+  assert_true(std::fabs(wall.signed_distance(Eigen::Vector3f(0, 0, kWall))) < 0.002f);
+  const int bar_col = static_cast<int>(std::lround(s.cx));
+  return ws.flags[61 * 160 + bar_col];
+}
+
+void test_cross_probe_finds_the_wall_past_a_taller_face(void**) {
+  const std::uint8_t clear = bar_flags_beside_face(false);
+  assert_true(clear & kFlagGap);
+  assert_true(clear & kFlagCrossX);
+  const std::uint8_t speckled = bar_flags_beside_face(true);
+  assert_true(speckled & kFlagGap);
+  assert_false(speckled & kFlagCrossX);
+}
+
 void test_candidates_cluster_and_select(void**) {
   SyntheticScene s = bar_scene();
   std::vector<CloudPoint> pts;
@@ -501,6 +542,86 @@ void test_bar_profile(void**) {
   assert_true(profile_fits_bar(p, DetectorConfig{}));
 }
 
+// The clearance under the bar on a 24 x 20 image: the line's inliers a
+// column two pixels wide (image columns 10 and 11), 6 cm above the wall,
+// the bar's lower side face one more pixel (4 cm) on the right, then the
+// silhouette's own pixel. Past it, two pixels in the clearance band are a
+// side face reaching down (a fin); the wall there, or a single pixel in the
+// band (a flying pixel), is a bar's clearance.
+void test_bar_clearance(void**) {
+  constexpr int kW = 24, kH = 20;
+  std::vector<CloudPoint> pts(kW * kH);
+  OrganizedCloud cloud;
+  cloud.points = pts.data();
+  cloud.width = kW;
+  cloud.height = kH;
+  Workspace ws(pts.size());
+  IndexList inliers(pts.size());
+  PixelScale scale;
+  scale.ok = true;
+  scale.fx_px = scale.fy_px = 200.0f;
+  CenterLine line;
+  line.point = Eigen::Vector3f(0.0f, 0.0f, 0.55f);
+  line.axis = Eigen::Vector3f::UnitY();  // along image columns: the walks go along rows
+  // The cloud's points are all at the origin: every inlier lies 0 along
+  // the line, in the middle of its extent.
+  line.t_min_m = -0.1f;
+  line.t_max_m = 0.1f;
+  const auto fill = [&](float band_right_m, int band_pixels) {
+    inliers.clear();
+    for (int r = 0; r < kH; ++r) {
+      for (int c = 0; c < kW; ++c) {
+        float h = 0.0f;
+        if (c == 10 || c == 11) h = 0.06f;
+        if (c == 12) h = 0.04f;
+        if (c == 13) h = 0.025f;  // the silhouette's pixel, skipped
+        if (c >= 14 && c < 14 + band_pixels) h = band_right_m;
+        ws.signed_distance_m[r * kW + c] = h;
+        if (c == 10 || c == 11) inliers.push(r * kW + c);
+      }
+    }
+  };
+  const DetectorConfig cfg;  // the ISS bar: band 1.2 to 3 cm
+  fill(0.02f, 2);
+  BarClearance b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.0f);
+  assert_true(b.walks_rows);
+  // Every inlier walks both ways.
+  assert_int_equal(b.edges[0], 2 * kH);
+  assert_int_equal(b.edges[1], 2 * kH);
+  assert_int_equal(b.solid[0], 0);
+  assert_int_equal(b.solid[1], 2 * kH);
+  assert_false(clearance_fits_bar(b, cfg));
+  // Measured from a mount 1 cm higher the band is 2.2 to 4 cm above the
+  // search's wall: the 2 cm face is below it.
+  b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.01f);
+  assert_int_equal(b.edges[1], 2 * kH);
+  assert_int_equal(b.solid[1], 0);
+  assert_true(clearance_fits_bar(b, cfg));
+  fill(0.0f, 2);  // the wall behind the bar
+  b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.0f);
+  assert_int_equal(b.solid[1], 0);
+  assert_true(clearance_fits_bar(b, cfg));
+  fill(0.02f, 1);  // one pixel in the band: a flying pixel, not a face
+  b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.0f);
+  assert_int_equal(b.solid[1], 0);
+  // A short view: every inlier within a leg's length (4.5 cm) of an end,
+  // where a leg, solid down to the mount, may stand.
+  fill(0.02f, 2);
+  line.t_min_m = -0.04f;
+  line.t_max_m = 0.04f;
+  b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.0f);
+  assert_int_equal(b.edges[1], 0);
+  assert_true(clearance_fits_bar(b, cfg));
+  line.t_min_m = -0.1f;
+  line.t_max_m = 0.1f;
+  // Too few inliers to judge.
+  inliers.clear();
+  for (int r = 0; r < 5; ++r) inliers.push(r * kW + 11);
+  b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.0f);
+  assert_int_equal(b.solid[1], 5);
+  assert_true(clearance_fits_bar(b, cfg));
+}
+
 }  // namespace
 
 int main() {
@@ -514,6 +635,7 @@ int main() {
       cmocka_unit_test(test_fit_plane_orients_toward_camera),
       cmocka_unit_test(test_filters_keep_the_bar_and_drop_a_thin_cable),
       cmocka_unit_test(test_side_width_front_window_allows_deeper_faces_only_when_asked),
+      cmocka_unit_test(test_cross_probe_finds_the_wall_past_a_taller_face),
       cmocka_unit_test(test_candidates_cluster_and_select),
       cmocka_unit_test(test_cluster_splits_at_gaps),
       cmocka_unit_test(test_handrail_frame_is_eq5),
@@ -521,6 +643,7 @@ int main() {
       cmocka_unit_test(test_handrail_state),
       cmocka_unit_test(test_config_validation_names_the_field),
       cmocka_unit_test(test_bar_profile),
+      cmocka_unit_test(test_bar_clearance),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

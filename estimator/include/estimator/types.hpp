@@ -37,6 +37,7 @@ enum class LineVerdict : std::uint8_t {
   kNoMountBeside,   // the surface it would stand on is not beside it
   kRampEnd,         // a seen end comes down in a ramp, not at a leg
   kShallowProfile,  // seen from its side, no deeper than a cable (bar_profile.hpp)
+  kSolidBelow,      // its side face reaches down where a grip needs space (bar_clearance.hpp)
 };
 const char* to_string(LineVerdict verdict);
 
