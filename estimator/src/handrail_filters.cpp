@@ -48,17 +48,20 @@ float clamp_noise(float noise_m) {
 // segment of its row or column: from `offset` pixels out back toward the
 // bar, but never nearer than half the offset (nearer, it could land on the
 // bar itself). It finds the wall where two pixels in a row of the segment
-// are flagged on it (not raised off the searched surface); past the image's
-// edge a pixel counts as wall (a bar near the edge has only its inner side
-// in view), an invalid pixel does not. The search does not stop at the
-// first thing it meets: on a rack wall the probe's spot often lies on a
-// taller face or a rack's edge beside the track, with the gap or the face
-// the track stands on between it and the bar. Two pixels, not one, because
-// a noisy raised surface (a wall seen at grazing incidence) has single
-// pixels scattered below its level.
+// are clearly on it: not raised off the searched surface, and not within
+// the gap window widened by the pixel's noise either (a far or grazing
+// pixel of a surface at the bar's height can fall below the wall's
+// tolerance; it is no evidence of the wall). Past the image's edge a pixel
+// counts as wall (a bar near the edge has only its inner side in view), an
+// invalid pixel does not. The search does not stop at the first thing it
+// meets: on a rack wall the probe's spot often lies on a taller face or a
+// rack's edge beside the track, with the gap or the face the track stands
+// on between it and the bar. Two pixels, not one, because a noisy raised
+// surface (a wall seen at grazing incidence) has single pixels scattered
+// below its level.
 //
 // Along a row the wall pixels are a bitset (one bit per pixel, from the
-// flags' wall bit eight pixels at a time), and so are the pairs' first
+// flags' wall and gap bits eight pixels at a time), and so are the pairs' first
 // pixels: a probe tests a few words. Down the columns every pixel holds the
 // first row at or below it that starts a pair, filled for the whole image a
 // row at a time from the bottom up, eight columns per vector operation.
@@ -104,13 +107,18 @@ class WallPairs {
     const int lo = row - offset_px, hi = row - near;
     const int first = std::max(lo + 1, 0);
     if (first > hi) return false;
-    if (first == 0 && (flags_[col] & kFlagWall)) return true;
+    if (first == 0 && clear_wall(flags_[col])) return true;
     const int from = std::max(first, 1) - 1;
     return from <= hi - 1 && next[from * width_] <= hi - 1;
   }
 
  private:
   static constexpr int kWords = static_cast<int>(Workspace::kMaxWidth / 64) + 1;
+  static_assert(kFlagWall == 1u << 7 && kFlagGap == 1u << 2,
+                "the gap bit shifts onto the wall bit");
+
+  // On the wall and not in the gap window widened by the pixel's noise.
+  static bool clear_wall(std::uint8_t f) { return (f & kFlagWall) && !(f & kFlagGap); }
 
   // Whether any bit in [a, b] (a <= b) is set.
   static bool any_bit(const std::uint64_t* bits, int a, int b) {
@@ -137,12 +145,13 @@ class WallPairs {
       static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "pixel c is the lowest byte");
       std::uint64_t eight;
       std::memcpy(&eight, f + c, sizeof eight);
+      const std::uint64_t clear = eight & ~(eight << 5);  // bit 2 (gap) onto bit 7 (wall)
       const std::uint64_t gathered =
-          ((eight & 0x8080808080808080ull) >> 7) * 0x0102040810204080ull >> 56;
+          ((clear & 0x8080808080808080ull) >> 7) * 0x0102040810204080ull >> 56;
       row_walls_[c >> 6] |= gathered << (c & 63);
     }
     for (; c < width_; ++c) {
-      if (f[c] & kFlagWall) row_walls_[c >> 6] |= 1ull << (c & 63);
+      if (clear_wall(f[c])) row_walls_[c >> 6] |= 1ull << (c & 63);
     }
     // Past the row's end counts as wall.
     row_walls_[width_ >> 6] |= 1ull << (width_ & 63);
@@ -163,7 +172,7 @@ class WallPairs {
     std::int16_t* bottom = column_next_ + static_cast<std::size_t>(last) * width_;
     const std::uint8_t* f = flags_ + static_cast<std::size_t>(last) * width_;
     for (int c = 0; c < width_; ++c) {
-      bottom[c] = static_cast<std::int16_t>((f[c] & kFlagWall) ? last : height_);
+      bottom[c] = static_cast<std::int16_t>(clear_wall(f[c]) ? last : height_);
     }
     for (int r = last - 1; r >= 0; --r) {
       std::int16_t* next = column_next_ + static_cast<std::size_t>(r) * width_;
@@ -179,14 +188,15 @@ class WallPairs {
         std::memcpy(&b, under + c, sizeof b);
         std::memcpy(&down, below + c, sizeof down);
         constexpr std::int16_t kWallBit = kFlagWall;
-        const Shorts8 both = __builtin_convertvector(a & b, Shorts8) & kWallBit;
+        const Bytes8 ab = a & b & ~((a | b) << 5);
+        const Shorts8 both = __builtin_convertvector(ab, Shorts8) & kWallBit;
         const Shorts8 zero = {0, 0, 0, 0, 0, 0, 0, 0};
         const Shorts8 here_index = zero + row_index;
         const Shorts8 out = both != zero ? here_index : down;
         std::memcpy(next + c, &out, sizeof out);
       }
       for (; c < width_; ++c) {
-        next[c] = (here[c] & under[c] & kFlagWall) ? row_index : below[c];
+        next[c] = clear_wall(here[c]) && clear_wall(under[c]) ? row_index : below[c];
       }
     }
     columns_filled_ = true;
