@@ -70,7 +70,7 @@ BarClearance measure_bar_clearance(const OrganizedCloud& cloud, const DetectorCo
       const int v = walk_from_edge(distance_m, width, height, row, col, sign * drow, sign * dcol,
                                    band_low, band_high);
       if (v < 0) continue;
-      ++out.edges[side];
+      ++out.walks[side];
       out.solid[side] += static_cast<std::uint32_t>(v);
     }
   }
@@ -79,9 +79,9 @@ BarClearance measure_bar_clearance(const OrganizedCloud& cloud, const DetectorCo
 
 bool clearance_fits_bar(const BarClearance& clearance, const DetectorConfig& cfg) {
   for (int side = 0; side < 2; ++side) {
-    if (clearance.edges[side] < kMinClearanceEdges) continue;
+    if (clearance.walks[side] < kMinClearanceWalks) continue;
     if (static_cast<float>(clearance.solid[side]) >
-        cfg.clearance_max_solid_fraction * static_cast<float>(clearance.edges[side])) {
+        cfg.clearance_max_solid_fraction * static_cast<float>(clearance.walks[side])) {
       return false;
     }
   }

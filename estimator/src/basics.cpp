@@ -204,7 +204,6 @@ Workspace::Workspace(std::size_t n)
       column_run_peak_m(new float[kMaxWidth]),
       column_run_base_m(new float[kMaxWidth]),
       column_wall_pair_next(new std::int16_t[n]),
-      row_wall_pair_next(new std::int16_t[kMaxWidth]),
       score_x_m(new float[kMaxScoreSamples]),
       score_y_m(new float[kMaxScoreSamples]),
       score_z_m(new float[kMaxScoreSamples]),
@@ -216,8 +215,7 @@ std::size_t Workspace::bytes() const {
   return max_pixels * (sizeof(float) * 8 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7 +
                        sizeof(std::int16_t)) +
          3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
-         sizeof(std::int32_t) * kMaxRefitSamples + 5 * 4 * kMaxWidth +
-         sizeof(std::int16_t) * kMaxWidth;
+         sizeof(std::int32_t) * kMaxRefitSamples + 5 * 4 * kMaxWidth;
 }
 
 }  // namespace estimator

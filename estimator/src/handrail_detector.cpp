@@ -309,8 +309,9 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   // height tests, while a short piece of clutter may pass them. As in
   // Algorithm 1, a find within 45 deg of the gripper's angle beats one
   // across it (a cable crossing the view on the dominant plane must not hide
-  // the rail on its seat track), and only such a find ends the search. A frame with none
-  // reports what the flat-wall search found (its status and counts).
+  // the rail on its seat track), and only such a find ends the search. A
+  // frame with none reports what the flat-wall search found (its status and
+  // counts).
   constexpr std::uint32_t kDominant = kMaxMountHypotheses;
   std::uint32_t order[kMaxMountHypotheses + 1];
   std::uint32_t searches = 0;

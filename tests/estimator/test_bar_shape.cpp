@@ -111,15 +111,15 @@ void test_bar_clearance(void**) {
   BarClearance b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.0f);
   assert_true(b.walks_rows);
   // Every inlier walks both ways.
-  assert_int_equal(b.edges[0], 2 * kH);
-  assert_int_equal(b.edges[1], 2 * kH);
+  assert_int_equal(b.walks[0], 2 * kH);
+  assert_int_equal(b.walks[1], 2 * kH);
   assert_int_equal(b.solid[0], 0);
   assert_int_equal(b.solid[1], 2 * kH);
   assert_false(clearance_fits_bar(b, cfg));
   // Measured from a mount 1 cm higher the band is 2.2 to 4 cm above the
   // search's wall: the 2 cm face is below it.
   b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.01f);
-  assert_int_equal(b.edges[1], 2 * kH);
+  assert_int_equal(b.walks[1], 2 * kH);
   assert_int_equal(b.solid[1], 0);
   assert_true(clearance_fits_bar(b, cfg));
   fill(0.0f, 2);  // the wall behind the bar
@@ -135,7 +135,7 @@ void test_bar_clearance(void**) {
   line.t_min_m = -0.04f;
   line.t_max_m = 0.04f;
   b = measure_bar_clearance(cloud, cfg, scale, ws, line, inliers, 0.0f);
-  assert_int_equal(b.edges[1], 0);
+  assert_int_equal(b.walks[1], 0);
   assert_true(clearance_fits_bar(b, cfg));
   line.t_min_m = -0.1f;
   line.t_max_m = 0.1f;

@@ -136,8 +136,8 @@ struct DetectorConfig {
   float profile_min_obliquity_deg = 20.0f;
   float profile_min_spread_m = 0.017f;
   // The clearance under the bar (bar_clearance.hpp): the band of heights
-  // above the line's mount where a grip's space is, and the share of the
-  // line's edges on one side that may show a side face reaching into it.
+  // above the line's mount where a grip's space is, and the share of one
+  // side's inlier walks that may meet a side face reaching into it.
   float clearance_low_m = 0.012f;
   float clearance_high_m = 0.030f;
   float clearance_max_solid_fraction = 0.3f;
