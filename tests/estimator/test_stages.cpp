@@ -285,6 +285,15 @@ void test_filters_keep_the_bar_and_drop_a_thin_cable(void**) {
 // pushed back): it passes only where the search allows deeper faces. Over
 // the wall itself it is a cable, refused either way; a bar 1.5 cm higher
 // is refused either way.
+// Moves a rendered point along its camera ray to `depth_change_m` further
+// from the camera (negative: nearer), as a face at another depth shows it.
+void move_along_ray(CloudPoint* p, double depth_change_m) {
+  const float scale = static_cast<float>((kWall + depth_change_m) / kWall);
+  p->x_m *= scale;
+  p->y_m *= scale;
+  p->z_m *= scale;
+}
+
 std::size_t side_pixels(double offset_m, double band_behind_m, FrontFace front_face) {
   SyntheticScene s;
   s.cylinders.push_back(testing_support::vertical_bar(kWall, offset_m, 0.3));
@@ -293,10 +302,7 @@ std::size_t side_pixels(double offset_m, double band_behind_m, FrontFace front_f
   for (CloudPoint& p : pts) {
     // Wall points of the band move back along their rays.
     if (std::fabs(p.z_m - kWall) > 1e-4 || std::fabs(p.x_m) > 0.06) continue;
-    const float scale = static_cast<float>((kWall + band_behind_m) / kWall);
-    p.x_m *= scale;
-    p.y_m *= scale;
-    p.z_m *= scale;
+    move_along_ray(&p, band_behind_m);
   }
   const DetectorConfig cfg = test_config();
   Workspace ws(cloud.size());
@@ -339,10 +345,7 @@ std::uint8_t bar_flags_beside_face(bool speckled) {
     const double face_from_m = speckled ? 0.025 : 0.07;
     if (!on_wall || p.x_m < face_from_m || p.x_m > 0.25) continue;
     if (speckled && (k % 160) % 2 == 0) continue;
-    const float scale = static_cast<float>((kWall - 0.03) / kWall);
-    p.x_m *= scale;
-    p.y_m *= scale;
-    p.z_m *= scale;
+    move_along_ray(&p, -0.03);
   }
   const DetectorConfig cfg = test_config();
   Workspace ws(cloud.size());
