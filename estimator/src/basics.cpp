@@ -37,6 +37,9 @@ const char* validate(const DetectorConfig& c) {
     return "handrail.bar_center_offset_m";
   if (!(h.bar_length_m > 0.05f && h.bar_length_m < 3.0f)) return "handrail.bar_length_m";
   if (!(c.min_range_m > 0.0f && c.max_range_m > c.min_range_m)) return "max_range_m";
+  if (!(c.max_find_range_m > c.min_range_m && c.max_find_range_m <= c.max_range_m)) {
+    return "max_find_range_m";
+  }
   if (c.plane_iterations == 0 || c.plane_iterations > 10000) return "plane_iterations";
   if (c.plane_max_iterations < c.plane_iterations || c.plane_max_iterations > 10000) {
     return "plane_max_iterations";
@@ -154,6 +157,8 @@ const char* to_string(LineVerdict verdict) {
       return "SHALLOW_PROFILE";
     case LineVerdict::kSolidBelow:
       return "SOLID_BELOW";
+    case LineVerdict::kTooFar:
+      return "TOO_FAR";
     case LineVerdict::kBeamLength:
       return "BEAM_LENGTH";
   }

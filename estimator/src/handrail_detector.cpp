@@ -215,6 +215,8 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
     const Eigen::Vector3f end_point = line->point + end_t[e] * line->axis;
     if (drop_m[e] > allowed_end_drop_m(cfg_, scale_, end_point.z())) return LineVerdict::kRampEnd;
   }
+  const Eigen::Vector3f visible_middle = line->point + 0.5f * (end_t[0] + end_t[1]) * line->axis;
+  if (visible_middle.norm() > cfg_.max_find_range_m) return LineVerdict::kTooFar;
   // The beam-length check of Algorithm 1 applies in full only when both
   // ends are seen, against every known length; a bar that runs out of view
   // need only be long enough not to be clutter, and never longer than the

@@ -86,6 +86,22 @@ void test_lower_pipe_beside_the_bar_does_not_hide_it(void**) {
   }
 }
 
+void test_bar_past_the_find_range_is_refused(void**) {
+  // The bar's visible middle is 0.52 m away: inside a 0.55 m find range it
+  // is found, past a 0.5 m one it is refused as too far to verify.
+  std::vector<CloudPoint> pts;
+  const OrganizedCloud cloud = testing_support::render(bar_scene(0.001), &pts);
+  DetectorConfig cfg = synthetic_config();
+  cfg.max_find_range_m = 0.55f;
+  assert_int_equal(static_cast<int>(HandrailDetector(cfg).detect(cloud).status),
+                   static_cast<int>(DetectStatus::kFound));
+  cfg.max_find_range_m = 0.50f;
+  const HandrailDetection d = HandrailDetector(cfg).detect(cloud);
+  assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kNoLine));
+  assert_string_equal(to_string(d.counts.first_rejection), "TOO_FAR");
+  assert_no_pose(d);
+}
+
 void test_wall_only_reports_no_handrail(void**) {
   std::vector<CloudPoint> pts;
   const OrganizedCloud cloud = testing_support::render(testing_support::SyntheticScene{}, &pts, 7);
@@ -249,6 +265,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_synthetic_bar_both_ends),
       cmocka_unit_test(test_lower_pipe_beside_the_bar_does_not_hide_it),
+      cmocka_unit_test(test_bar_past_the_find_range_is_refused),
       cmocka_unit_test(test_wall_only_reports_no_handrail),
       cmocka_unit_test(test_invalid_and_oversized_frames),
       cmocka_unit_test(test_repeatable),

@@ -490,6 +490,12 @@ void test_bad_mount_and_type_settings_are_named(void**) {
   cfg = DetectorConfig{};
   cfg.clearance_max_solid_fraction = 0.0f;
   assert_string_equal(validate(cfg), "clearance_max_solid_fraction");
+  cfg = DetectorConfig{};
+  cfg.max_find_range_m = 2.5f;  // past the points used: nothing to find there
+  assert_string_equal(validate(cfg), "max_find_range_m");
+  cfg = DetectorConfig{};
+  cfg.max_find_range_m = NAN;
+  assert_string_equal(validate(cfg), "max_find_range_m");
   assert_null(validate(DetectorConfig{}));
 }
 

@@ -44,6 +44,15 @@ struct DetectorConfig {
   // Input gating.
   float min_range_m = 0.10f;
   float max_range_m = 2.00f;
+  // A handrail is reported only where its checks can tell it from what
+  // looks like it: a line whose visible middle lies farther than this is
+  // refused (TOO_FAR). Past 1.5 m the bar (1.9 cm) is under three pixels
+  // across and its pixels' depth noise (about 1 % of range, 7 mm and more)
+  // is half the seat track's 1.3 cm step, so its height, side width,
+  // profile and clearance no longer separate it from a rack's edge or a
+  // cable. Points out to max_range_m still feed the wall and mount
+  // estimates. The flown detector cut all points at 1.5 m.
+  float max_find_range_m = 1.50f;
 
   // Plane estimation (RANSAC over 3 points, then least squares on inliers).
   // RANSAC draws at least plane_iterations hypotheses, and goes on (up to

@@ -38,6 +38,7 @@ enum class LineVerdict : std::uint8_t {
   kRampEnd,         // a seen end comes down in a ramp, not at a leg
   kShallowProfile,  // seen from its side, no deeper than a cable (bar_profile.hpp)
   kSolidBelow,      // its side face reaches down where a grip needs space (bar_clearance.hpp)
+  kTooFar,          // its visible middle lies beyond max_find_range_m
 };
 const char* to_string(LineVerdict verdict);
 

@@ -23,6 +23,7 @@ struct UintKey {
 constexpr FloatKey kFloatKeys[] = {
     {"min_range_m", &estimator::DetectorConfig::min_range_m},
     {"max_range_m", &estimator::DetectorConfig::max_range_m},
+    {"max_find_range_m", &estimator::DetectorConfig::max_find_range_m},
     {"plane_inlier_m", &estimator::DetectorConfig::plane_inlier_m},
     {"plane_min_inlier_fraction", &estimator::DetectorConfig::plane_min_inlier_fraction},
     {"gap_margin_m", &estimator::DetectorConfig::gap_margin_m},
