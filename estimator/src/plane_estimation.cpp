@@ -93,7 +93,8 @@ constexpr float kModeBinM = 0.002f;
 constexpr int kModeBins = 32;  // +-3.2 cm: the RANSAC inlier band and more
 constexpr float kTightHalfWidthM = 0.005f;
 
-bool refit_on_main_surface(const float* x, const float* y, const float* z, std::size_t m,
+// Moves the plane along its normal onto the mode of the points' distances.
+bool shift_to_main_surface(const float* x, const float* y, const float* z, std::size_t m,
                            Plane* plane) {
   std::uint32_t count[kModeBins] = {};
   const float a = plane->normal.x(), b = plane->normal.y(), c = plane->normal.z(), d = plane->d;
@@ -112,8 +113,14 @@ bool refit_on_main_surface(const float* x, const float* y, const float* z, std::
     }
   }
   if (best < 0) return false;
+  plane->d -= lo + (static_cast<float>(best) + 0.5f) * kModeBinM;
+  return true;
+}
+
+bool refit_on_main_surface(const float* x, const float* y, const float* z, std::size_t m,
+                           Plane* plane) {
   Plane shifted = *plane;
-  shifted.d -= lo + (static_cast<float>(best) + 0.5f) * kModeBinM;
+  if (!shift_to_main_surface(x, y, z, m, &shifted)) return false;
   std::uint32_t support = 0;
   for (int pass = 0; pass < 2; ++pass) {
     if (!refit_plane(x, y, z, m, kTightHalfWidthM, &shifted, &support) || support < 3) return false;
@@ -149,6 +156,10 @@ std::uint64_t normal_sharpness(const Eigen::Vector3f& n, const float* x, const f
 // most sharply: a coordinate search over tilts of the normal, halving the
 // step from 8 deg to 0.25 deg (a fixed 6 x 4 evaluations), finds it.
 constexpr float kSharperCos = 0.99985f;  // cos 1 deg
+// A least-squares refit of one face may move the normal by the noise, not
+// by degrees: further than this it has taken a neighbouring face too.
+constexpr float kRefitKeepsNormalCos = 0.9998f;  // cos 1.15 deg
+constexpr float kKeepBroadCos = 0.999986f;       // cos 0.3 deg
 
 Eigen::Vector3f sharpest_normal(Eigen::Vector3f n, const float* x, const float* y, const float* z,
                                 std::size_t m) {
@@ -169,6 +180,218 @@ Eigen::Vector3f sharpest_normal(Eigen::Vector3f n, const float* x, const float* 
     n = best_n;
   }
   return n;
+}
+
+// The faces' shared normal refined by least squares over the faces
+// themselves: along the current normal each face is a peak of the points'
+// distances (1 mm bins within kFaceSearchM of the plane); the points near
+// a peak, less their own face's centroid, pile into one scatter whose
+// direction of least spread is the normal all the faces share. A step
+// between faces, which tilts a triangle straddling it, is gone with the
+// centroids. Twice, the second time along the first result.
+constexpr float kFaceBinM = 0.001f;
+constexpr int kFaceBins = 64;  // +-3.2 cm
+constexpr int kMaxFaces = 4;
+constexpr float kFaceHalfWidthM = 0.004f;
+constexpr float kFaceMinShare = 0.05f;  // of the points within the search, for a peak
+
+bool pooled_faces_normal(const float* x, const float* y, const float* z, std::size_t m,
+                         const Plane& through, Eigen::Vector3f* normal) {
+  Eigen::Vector3f n = *normal;
+  const Eigen::Vector3f on_plane = -through.d * through.normal;
+  for (int pass = 0; pass < 2; ++pass) {
+    const float d = -n.dot(on_plane);
+    const float lo = -0.5f * kFaceBins * kFaceBinM;
+    std::uint32_t count[kFaceBins] = {};
+    std::uint32_t total = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const float bin = (n.x() * x[k] + n.y() * y[k] + n.z() * z[k] + d - lo) / kFaceBinM;
+      if (bin >= 0.0f && bin < static_cast<float>(kFaceBins)) {
+        ++count[static_cast<int>(bin)];
+        ++total;
+      }
+    }
+    // Peaks of the histogram smoothed over 5 bins, strongest first, each at
+    // least two face half-widths from the ones before.
+    float smooth[kFaceBins] = {};
+    for (int b = 2; b + 2 < kFaceBins; ++b) {
+      smooth[b] = static_cast<float>(count[b - 2] + 2 * count[b - 1] + 3 * count[b] +
+                                     2 * count[b + 1] + count[b + 2]) /
+                  9.0f;
+    }
+    float face_m[kMaxFaces];
+    int faces = 0;
+    for (int f = 0; f < kMaxFaces; ++f) {
+      int best = -1;
+      for (int b = 2; b + 2 < kFaceBins; ++b) {
+        const float centre = lo + (static_cast<float>(b) + 0.5f) * kFaceBinM;
+        bool taken = false;
+        for (int g = 0; g < faces; ++g)
+          taken |= std::fabs(centre - face_m[g]) < 2.0f * kFaceHalfWidthM;
+        if (!taken && (best < 0 || smooth[b] > smooth[best])) best = b;
+      }
+      if (best < 0 || smooth[best] * 5.0f < kFaceMinShare * static_cast<float>(total)) break;
+      face_m[faces++] = lo + (static_cast<float>(best) + 0.5f) * kFaceBinM;
+    }
+    if (faces == 0) return false;
+    PointMoments moments[kMaxFaces];
+    for (int f = 0; f < faces; ++f) moments[f].set_reference(x[0], y[0], z[0]);
+    for (std::size_t k = 0; k < m; ++k) {
+      const float s = n.x() * x[k] + n.y() * y[k] + n.z() * z[k] + d;
+      int nearest = -1;
+      float nearest_m = kFaceHalfWidthM;
+      for (int f = 0; f < faces; ++f) {
+        const float e = std::fabs(s - face_m[f]);
+        if (e < nearest_m) {
+          nearest_m = e;
+          nearest = f;
+        }
+      }
+      if (nearest >= 0) moments[nearest].add(x[k], y[k], z[k]);
+    }
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    double points = 0.0;
+    for (int f = 0; f < faces; ++f) {
+      if (moments[f].n < 3.0) continue;
+      scatter += moments[f].covariance() * moments[f].n;
+      points += moments[f].n;
+    }
+    if (points < 50.0) return false;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(scatter);
+    Eigen::Vector3f refined = solver.eigenvectors().col(0).cast<float>();
+    if (!refined.allFinite()) return false;
+    if (refined.dot(n) < 0.0f) refined = -refined;
+    n = refined.normalized();
+  }
+  *normal = n;
+  return true;
+}
+
+// The mean distance of the points within kTightHalfWidthM of the most
+// populated surface along the plane's normal, taken into its offset; the
+// normal stays.
+bool place_on_main_surface(const float* x, const float* y, const float* z, std::size_t m,
+                           Plane* plane) {
+  Plane shifted = *plane;
+  if (!shift_to_main_surface(x, y, z, m, &shifted)) return false;
+  const float a = shifted.normal.x(), b = shifted.normal.y(), c = shifted.normal.z();
+  double sum = 0.0;
+  std::uint32_t n = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const float s = a * x[k] + b * y[k] + c * z[k] + shifted.d;
+    if (std::fabs(s) < kTightHalfWidthM) {
+      sum += s;
+      ++n;
+    }
+  }
+  if (n < 3) return false;
+  shifted.d -= static_cast<float>(sum / n);
+  *plane = shifted;
+  return true;
+}
+
+// Cells: the view cut into square cells, each fit with its own plane over
+// its points on the broad plane; a cell astride a step between two faces
+// fits worse than one on a single face (its residual holds half the step
+// as well as the noise, and over hundreds of points that shows), so cells
+// whose residual is over kCellResidualRatio times the median cell's are
+// left out, and the rest pooled: their scatters about their own centroids
+// summed, whose direction of least spread is the normal the faces share.
+constexpr int kCellPx = 28;
+constexpr int kCellStridePx = 2;
+constexpr int kMaxCells = 64;
+constexpr float kCellResidualRatio = 1.5f;
+constexpr float kCellGateCos = 0.866f;  // 30 deg: a box's side is no face of the wall
+constexpr double kMinCellPoints = 30.0;
+constexpr float kCellAgree = 0.035f;  // 2 deg
+
+bool pooled_cells_normal(const OrganizedCloud& cloud, const DetectorConfig& cfg, const Plane& broad,
+                         Eigen::Vector3f* normal) {
+  const int cols = static_cast<int>(cloud.width) / kCellPx;
+  const int rows = static_cast<int>(cloud.height) / kCellPx;
+  if (cols * rows <= 0 || cols * rows > kMaxCells) return false;
+  Eigen::Matrix3d cov[kMaxCells];
+  double count[kMaxCells] = {};
+  int cells = 0;
+  for (int cr = 0; cr < rows; ++cr) {
+    for (int cc = 0; cc < cols; ++cc) {
+      PointMoments m;
+      bool referenced = false;
+      for (int r = cr * kCellPx; r < (cr + 1) * kCellPx; r += kCellStridePx) {
+        for (int c = cc * kCellPx; c < (cc + 1) * kCellPx; c += kCellStridePx) {
+          const CloudPoint& p = cloud.at(r, c);
+          if (!is_usable_point(p, cfg.min_range_m, cfg.max_range_m)) continue;
+          if (std::fabs(broad.signed_distance({p.x_m, p.y_m, p.z_m})) >= 2.0f * cfg.plane_inlier_m)
+            continue;
+          if (!referenced) {
+            m.set_reference(p.x_m, p.y_m, p.z_m);
+            referenced = true;
+          }
+          m.add(p.x_m, p.y_m, p.z_m);
+        }
+      }
+      if (m.n < kMinCellPoints) continue;
+      const Eigen::Matrix3d c = m.covariance();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+      solver.computeDirect(c);
+      const Eigen::Vector3d cell_normal = solver.eigenvectors().col(0);
+      if (!cell_normal.allFinite() ||
+          std::fabs(cell_normal.cast<float>().dot(broad.normal)) < kCellGateCos) {
+        continue;
+      }
+      cov[cells] = c;
+      count[cells] = m.n;
+      ++cells;
+    }
+  }
+  if (cells < 3) return false;
+  // The cells' normals in the broad plane's tangent coordinates; a cell
+  // astride a step tilts its plane to take the step in, so the ones far
+  // from the cells' median normal are left out.
+  const Eigen::Vector3f e1 = broad.normal.unitOrthogonal(), e2 = broad.normal.cross(e1);
+  float tu[kMaxCells], tv[kMaxCells];
+  for (int k = 0; k < cells; ++k) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(cov[k]);
+    Eigen::Vector3f nk = solver.eigenvectors().col(0).cast<float>();
+    if (nk.dot(broad.normal) < 0.0f) nk = -nk;
+    tu[k] = nk.dot(e1);
+    tv[k] = nk.dot(e2);
+  }
+  // The cell whose normal has the most cells' normals within kCellAgree
+  // of it (the faces' normal, if any cells lie on faces alone), and the
+  // cells within that of it.
+  int mode = -1, mode_votes = 0;
+  for (int k = 0; k < cells; ++k) {
+    int votes = 0;
+    for (int j = 0; j < cells; ++j) {
+      votes +=
+          std::hypot(tu[k] - tu[j], tv[k] - tv[j]) < kCellAgree ? static_cast<int>(count[j]) : 0;
+    }
+    if (votes > mode_votes) {
+      mode_votes = votes;
+      mode = k;
+    }
+  }
+  float deviation[kMaxCells];
+  for (int k = 0; k < cells; ++k) deviation[k] = std::hypot(tu[k] - tu[mode], tv[k] - tv[mode]);
+  const float limit = kCellAgree;
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  int used = 0;
+  for (int k = 0; k < cells; ++k) {
+    if (deviation[k] > limit) continue;
+    scatter += cov[k] * count[k];
+    ++used;
+  }
+  if (used < 3) return false;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(scatter);
+  Eigen::Vector3f n = solver.eigenvectors().col(0).cast<float>();
+  if (!n.allFinite()) return false;
+  if (n.dot(broad.normal) < 0.0f) n = -n;
+  *normal = n.normalized();
+  return true;
 }
 
 // How many triples to draw for a 99 % chance that one was all inliers,
@@ -291,6 +514,31 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
       tight.d = -sharp.dot(on_plane);
     }
     best = tight;
+  }
+  // Last, the normal the faces share (from cells of the view that lie on
+  // one face, then by least squares over each face about its own
+  // centroid), and the most
+  // populated face along it: refit there unless that tilts it again (faces
+  // too close for the tight band to hold one alone), else only moved onto
+  // it.
+  Eigen::Vector3f faces_normal;
+  if (cfg.plane_faces_normal && pooled_cells_normal(cloud, cfg, best, &faces_normal)) {
+    if (faces_normal.dot(best.normal) < 0.0f) faces_normal = -faces_normal;
+    pooled_faces_normal(rx, ry, rz, m_refit, best, &faces_normal);
+    // Within a third of a degree the broad fit stands: on a flat wall it
+    // is the least-squares fit of every point, finer than any face's.
+    if (faces_normal.dot(best.normal) > kKeepBroadCos) faces_normal = best.normal;
+    Plane along_faces = best;
+    const Eigen::Vector3f on_plane = -best.d * best.normal;
+    along_faces.normal = faces_normal;
+    along_faces.d = -faces_normal.dot(on_plane);
+    Plane refit = along_faces;
+    if (refit_on_main_surface(rx, ry, rz, m_refit, &refit) && refit.d > 0.0f &&
+        refit.normal.dot(faces_normal) > kRefitKeepsNormalCos) {
+      best = refit;
+    } else if (place_on_main_surface(rx, ry, rz, m_refit, &along_faces) && along_faces.d > 0.0f) {
+      best = along_faces;
+    }
   }
   if (best.d < 0.0f) return result;
   const float fraction = static_cast<float>(support) / static_cast<float>(m_refit);

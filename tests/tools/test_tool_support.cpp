@@ -40,6 +40,10 @@ void test_config_file(void**) {
   estimator::DetectorConfig none;
   assert_true(formats::parse_detector_config("{\"handrail_types\": []}", "n.json", &none, &error));
   assert_int_equal(none.handrail_type_count, 0);
+  assert_false(none.plane_faces_normal);
+  assert_true(
+      formats::parse_detector_config("{\"plane_faces_normal\": true}", "p.json", &none, &error));
+  assert_true(none.plane_faces_normal);
 
   struct Case {
     const char* text;
@@ -49,6 +53,8 @@ void test_config_file(void**) {
        "c.json:2: \"line_iterations\" is out of range or inconsistent with the other settings"},
       {"{\n \"speed\": 3\n}", "c.json:2: unknown key \"speed\""},
       {"{\n \"plane_inlier_m\": \"big\"\n}", "c.json:2: \"plane_inlier_m\" must be a number"},
+      {"{\n \"plane_faces_normal\": 1\n}",
+       "c.json:2: \"plane_faces_normal\" must be true or false"},
       {"{\n \"handrail\": {\"kind\": \"oval\"}\n}",
        "c.json:2: \"handrail.kind\" must be \"iss\" or \"round\""},
       {"{\n \"min_line_inliers\": 2.5\n}",

@@ -19,6 +19,7 @@
 #include "estimator/handrail_detector.hpp"
 #include "eval_chart.hpp"
 #include "eval_metrics.hpp"
+#include "formats/detector_config_io.hpp"
 #include "output_dir.hpp"
 #include "sim_camera_path.hpp"
 #include "sim_hal/scenario.hpp"
@@ -52,6 +53,9 @@ void usage(FILE* out) {
                "                    scenario's raw-path rates beside them\n"
                "  --seed-offset N   add N to every scenario's seed: the same scenes and poses\n"
                "                    with other sensor noise (how much a rate moves by chance)\n"
+               "  --config FILE     detector configuration (JSON, as hrdetect --config): an\n"
+               "                    option to try against the defaults; each scenario still\n"
+               "                    sets the handrail geometry and the gripper angle\n"
                "  -h, --help        this text\n",
                HRP_SCENARIO_DIR);
 }
@@ -207,7 +211,7 @@ void raw_beside_depth(std::ostringstream& md, const std::vector<ScenarioResult>&
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scenario_dir = HRP_SCENARIO_DIR, out_dir = "hreval-out";
+  std::string scenario_dir = HRP_SCENARIO_DIR, out_dir = "hreval-out", config_path;
   long max_frames = -1;
   bool true_length = false;
   long long seed_offset = 0;
@@ -241,6 +245,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "hreval: --seed-offset is a whole number >= 0, not '%s'\n", v.c_str());
         return 2;
       }
+    } else if (a == "--config") {
+      config_path = next("--config");
     } else if (a == "--camera") {
       const std::string v = next("--camera");
       if (v != "depth" && v != "raw" && v != "both") {
@@ -253,6 +259,14 @@ int main(int argc, char** argv) {
       return 2;
     } else {
       files.push_back(a);
+    }
+  }
+  estimator::DetectorConfig base_cfg;
+  if (!config_path.empty()) {
+    std::string config_error;
+    if (!formats::load_detector_config(config_path, &base_cfg, &config_error)) {
+      std::fprintf(stderr, "hreval: --config: %s\n", config_error.c_str());
+      return 2;
     }
   }
   if (files.empty()) files = list_scenarios(scenario_dir);
@@ -299,7 +313,7 @@ int main(int argc, char** argv) {
     const float length_m = true_length && !sc.scene.handrails.empty()
                                ? static_cast<float>(sc.scene.handrails[0].bar_length_m)
                                : 0.55f;
-    estimator::DetectorConfig cfg;
+    estimator::DetectorConfig cfg = base_cfg;
     cfg.handrail =
         round ? estimator::paper_round_handrail(length_m) : estimator::iss_handrail(length_m);
     // Told the length, the detector looks for that one, not every ISS type.

@@ -66,6 +66,16 @@ struct DetectorConfig {
   std::uint32_t plane_score_samples = 800;  // points scored per hypothesis
   float plane_inlier_m = 0.015f;
   float plane_min_inlier_fraction = 0.20f;
+  // Last, the normal the faces of a rack wall share, from cells of the view
+  // that lie on one face and a fit over each face about its own centroid
+  // (plane_estimation.cpp). On rack walls the broad plane tilts 1 to 2 deg
+  // (median) between faces a centimetre apart, up to 5 to 13 deg; this
+  // takes the development set's median under 0.4 deg. Off by default:
+  // with the wall right, more handrail-like cables pass the height test
+  // (development set: 56 -> 81 false frames without a handrail), so it
+  // waits for a test that tells them from a bar (sim_hal/README.md,
+  // "Session 23").
+  bool plane_faces_normal = false;
 
   // Mount surfaces. The surface a handrail stands on need not be the
   // dominant plane: on a rack wall it is a seat track (1.3 cm proud of its

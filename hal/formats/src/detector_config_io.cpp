@@ -201,6 +201,14 @@ bool read_detector_config(const formats::JsonValue& root, const std::string& pat
       if (!read_handrail_types(v, path, quoted(key), &c, error)) return false;
       continue;
     }
+    if (key == "plane_faces_normal") {
+      if (!v.is_bool()) {
+        *error = at(path, v) + quoted(key) + " must be true or false";
+        return false;
+      }
+      c.plane_faces_normal = v.boolean;
+      continue;
+    }
     bool known = false;
     // The three keys not copied straight into a float or count field, each
     // with its own range: a gripper angle the arm can take (0 to 90 deg,
