@@ -184,10 +184,10 @@ Eigen::Vector3f sharpest_normal(Eigen::Vector3f n, const float* x, const float* 
 
 // The faces' shared normal refined by least squares over the faces
 // themselves: along the current normal each face is a peak of the points'
-// distances (1 mm bins within kFaceSearchM of the plane); the points near
-// a peak, less their own face's centroid, pile into one scatter whose
-// direction of least spread is the normal all the faces share. A step
-// between faces, which tilts a triangle straddling it, is gone with the
+// distances (1 mm bins within 3.2 cm of the plane, at most kMaxFaces
+// peaks); the points within kFaceHalfWidthM of a peak, less their own
+// face's centroid, pile into one scatter whose direction of least spread is
+// the normal all the faces share. The steps between faces go with the
 // centroids. Twice, the second time along the first result.
 constexpr float kFaceBinM = 0.001f;
 constexpr int kFaceBins = 64;  // +-3.2 cm
@@ -292,16 +292,16 @@ bool place_on_main_surface(const float* x, const float* y, const float* z, std::
 }
 
 // Cells: the view cut into square cells, each fit with its own plane over
-// its points on the broad plane; a cell astride a step between two faces
-// fits worse than one on a single face (its residual holds half the step
-// as well as the noise, and over hundreds of points that shows), so cells
-// whose residual is over kCellResidualRatio times the median cell's are
-// left out, and the rest pooled: their scatters about their own centroids
-// summed, whose direction of least spread is the normal the faces share.
+// its points near the broad plane (within twice its inlier band). A cell on
+// one face has the faces' normal up to its noise; a cell astride a step
+// between faces tilts its plane to take the step in (and its residual
+// stays low, so the residual cannot tell). The cells' normals vote: the
+// one with the most points in cells agreeing with it within kCellAgree,
+// and the cells that agree with it, pooled (their scatters about their own
+// centroids summed), give the normal whose direction of least spread it is.
 constexpr int kCellPx = 28;
 constexpr int kCellStridePx = 2;
 constexpr int kMaxCells = 64;
-constexpr float kCellResidualRatio = 1.5f;
 constexpr float kCellGateCos = 0.866f;  // 30 deg: a box's side is no face of the wall
 constexpr double kMinCellPoints = 30.0;
 constexpr float kCellAgree = 0.035f;  // 2 deg
@@ -346,9 +346,7 @@ bool pooled_cells_normal(const OrganizedCloud& cloud, const DetectorConfig& cfg,
     }
   }
   if (cells < 3) return false;
-  // The cells' normals in the broad plane's tangent coordinates; a cell
-  // astride a step tilts its plane to take the step in, so the ones far
-  // from the cells' median normal are left out.
+  // The cells' normals in the broad plane's tangent coordinates.
   const Eigen::Vector3f e1 = broad.normal.unitOrthogonal(), e2 = broad.normal.cross(e1);
   float tu[kMaxCells], tv[kMaxCells];
   for (int k = 0; k < cells; ++k) {
@@ -515,12 +513,11 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
     }
     best = tight;
   }
-  // Last, the normal the faces share (from cells of the view that lie on
-  // one face, then by least squares over each face about its own
-  // centroid), and the most
-  // populated face along it: refit there unless that tilts it again (faces
-  // too close for the tight band to hold one alone), else only moved onto
-  // it.
+  // Optionally, last, the normal the faces share (from the cells of the
+  // view that lie on one face, then by least squares over each face about
+  // its own centroid), and the most populated face along it: refit there
+  // unless that tilts it again (faces too close for the tight band to hold
+  // one alone), else only moved onto it.
   Eigen::Vector3f faces_normal;
   if (cfg.plane_faces_normal && pooled_cells_normal(cloud, cfg, best, &faces_normal)) {
     if (faces_normal.dot(best.normal) < 0.0f) faces_normal = -faces_normal;

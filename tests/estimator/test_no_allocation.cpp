@@ -48,6 +48,7 @@ void test_no_allocation_over_hundreds_of_frames(void**) {
   iss_cfg.gripper_angle_rad = 1.5707963f;
   DetectorConfig round_cfg = iss_cfg;
   round_cfg.handrail = paper_round_handrail(0.55f);
+  round_cfg.plane_faces_normal = true;  // the optional wall normal allocates nothing either
   DetectorConfig synthetic_cfg = iss_cfg;
   synthetic_cfg.handrail = paper_round_handrail(0.3f);
   synthetic_cfg.gripper_angle_rad = 0.0f;
