@@ -187,6 +187,16 @@ void BM_Stage(benchmark::State& state, int stage) {
       case 1:
         benchmark::DoNotOptimize(estimator::estimate_plane(s->f.cloud, s->f.cfg, rng, s->ws));
         break;
+      case 7: {
+        // The same with the optional faces' normal (plane_faces_normal).
+        static const estimator::DetectorConfig faces_cfg = [] {
+          estimator::DetectorConfig c = s->f.cfg;
+          c.plane_faces_normal = true;
+          return c;
+        }();
+        benchmark::DoNotOptimize(estimator::estimate_plane(s->f.cloud, faces_cfg, rng, s->ws));
+        break;
+      }
       case 2: {
         std::uint32_t valid_pixels = 0;
         benchmark::DoNotOptimize(
@@ -244,6 +254,7 @@ BENCHMARK_CAPTURE(BM_FrameBasic, iss_table2_1, "table2-iss-1.pcd", false)
 BENCHMARK_CAPTURE(BM_Stage, sample_valid_points, 6)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Stage, pixel_scale, 0)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Stage, plane_estimation, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Stage, plane_estimation_faces_normal, 7)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Stage, gap_distance_test, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Stage, cross_point_test, 3)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Stage, side_width_test, 4)->Unit(benchmark::kMicrosecond);
