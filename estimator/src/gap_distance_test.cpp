@@ -87,7 +87,9 @@ Ints4 classify_four_shifted(const float* plane_distance_m, const float* widen_m,
 // The pass over every pixel, four at a time: `block(k)` classifies pixels
 // k..k+3 (writing their distances), `tail(k, rest)` the last one to three,
 // padded with invalid pixels (writing only the real ones' distances). Here
-// the flags are stored, the lanes counted and the gap list built.
+// the flags are stored, the lanes counted and the gap list built; a pixel
+// with any of the `list_skips` flags keeps its gap bit but is left out of
+// the list.
 //
 // Invalid pixels are scattered over a ToF frame, so the gap list is built
 // without branches: every index is written and the count advances only
@@ -96,7 +98,7 @@ Ints4 classify_four_shifted(const float* plane_distance_m, const float* widen_m,
 // reloads.
 template <class Block, class Tail>
 std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pixels, Block block,
-                           Tail tail) {
+                           Tail tail, std::int32_t list_skips) {
   std::uint8_t* flags_out = ws.flags.get();
   std::int32_t* gap_out = ws.gap.begin();
   std::size_t valid_count = 0, gap_count = 0, plane_inliers = 0;
@@ -113,7 +115,7 @@ std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pi
     plane_lanes -= (flags & kPlane) != 0;
     // The gap set is a tenth of a frame and comes in patches: most blocks
     // have none of it, and the branch is well predicted.
-    const Ints4 gap_bits = flags & kGap;
+    const Ints4 gap_bits = (flags & kGap) & ((flags & list_skips) == 0);
     if ((gap_bits[0] | gap_bits[1] | gap_bits[2] | gap_bits[3]) == 0) continue;
     for (int j = 0; j < 4; ++j) {
       gap_out[gap_count] = static_cast<std::int32_t>(k + j);
@@ -128,7 +130,7 @@ std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pi
     for (std::size_t j = 0; j < rest; ++j) {
       flags_out[k + j] = static_cast<std::uint8_t>(flags[j]);
       gap_out[gap_count] = static_cast<std::int32_t>(k + j);
-      gap_count += (flags[j] & kGap) != 0;
+      gap_count += (flags[j] & kGap) != 0 && (flags[j] & list_skips) == 0;
     }
   }
   for (int j = 0; j < 4; ++j) {
@@ -170,7 +172,7 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
     }
     return flags;
   };
-  return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail);
+  return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail, 0);
 }
 
 void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws) {
@@ -200,7 +202,14 @@ std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorCo
     for (std::size_t j = 0; j < rest; ++j) distance_out[k + j] = distance[j];
     return flags;
   };
-  return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail);
+  return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail,
+                      plane_left_out_of_gap_list(cfg, offset_m) ? kFlagPlane : 0);
+}
+
+bool plane_left_out_of_gap_list(const DetectorConfig& cfg, float offset_m) {
+  const float front_above_plane_m =
+      cfg.handrail.bar_center_offset_m + 0.5f * cfg.handrail.bar_depth_m + offset_m;
+  return front_above_plane_m > cfg.plane_inlier_m + kPlaneBandClearanceM;
 }
 
 }  // namespace estimator

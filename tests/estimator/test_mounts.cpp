@@ -247,6 +247,54 @@ void test_shifted_pass_equals_a_full_pass(void**) {
   }
 }
 
+// A search on a face 4 cm deeper than the dominant plane puts the whole
+// plane in its gap window. The plane's pixels keep their gap bit (the
+// probes read it) but stay out of the list the cross test walks; the bar
+// standing on that deeper face stays in it, front and sides.
+void test_search_below_the_plane_leaves_the_plane_out_of_the_list(void**) {
+  const float kMount = -0.04f;
+  testing_support::SyntheticScene scene;
+  // The bar's centre 7.4 cm above the deeper face: 3.4 cm above the plane.
+  scene.cylinders.push_back(testing_support::vertical_bar(0.6, 0.074 + kMount, 0.3, 0.0095));
+  scene.noise_m = 0.002;
+  std::vector<CloudPoint> pts;
+  OrganizedCloud cloud = testing_support::render(scene, &pts, 5);
+  DetectorConfig cfg;
+  cfg.max_width = 160;
+  cfg.max_height = 120;
+  Plane wall;
+  wall.normal = Eigen::Vector3f(0, 0, -1);
+  wall.d = 0.6f;
+  assert_true(plane_left_out_of_gap_list(cfg, kMount));
+  Workspace ws(cloud.size());
+  std::uint32_t valid = 0;
+  gap_distance_test(cloud, cfg, wall, ws, &valid);
+  keep_plane_pass(cloud, ws);
+  gap_distance_shifted(cloud, cfg, kMount, ws, &valid);
+  std::vector<char> listed(cloud.size(), 0);
+  for (std::int32_t i : ws.gap) listed[static_cast<std::size_t>(i)] = 1;
+  std::size_t plane_in_window = 0, bar_listed = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const bool on_plane = (ws.flags[i] & kFlagPlane) != 0;
+    const bool in_window = (ws.flags[i] & kFlagGap) != 0;
+    if (on_plane) {
+      assert_false(listed[i]);
+      plane_in_window += in_window;
+    } else {
+      // Everything else in the window is listed, as in a full pass.
+      assert_int_equal(listed[i], in_window);
+      bar_listed += in_window;
+    }
+  }
+  assert_true(plane_in_window > cloud.size() / 2);  // the plane is in the window
+  assert_true(bar_listed > 100);                    // and the bar is listed
+
+  // The deepest mount the search looks at still qualifies; a mount so deep
+  // that a bar's front would meet the plane's band does not.
+  assert_true(plane_left_out_of_gap_list(cfg, -cfg.mount_search_m));
+  assert_false(plane_left_out_of_gap_list(cfg, -0.07f));
+}
+
 void test_iss_lengths_are_matched_by_ratio(void**) {
   const DetectorConfig cfg;  // the station's four handrails and the module rail
   struct Case {
@@ -517,6 +565,7 @@ int main() {
       cmocka_unit_test(test_the_levels_beside_a_bar),
       cmocka_unit_test(test_the_mount_under_a_bar_beside_it),
       cmocka_unit_test(test_shifted_pass_equals_a_full_pass),
+      cmocka_unit_test(test_search_below_the_plane_leaves_the_plane_out_of_the_list),
       cmocka_unit_test(test_iss_lengths_are_matched_by_ratio),
       cmocka_unit_test(test_one_configured_length_without_types),
       cmocka_unit_test(test_the_shortest_partial_bar),

@@ -24,9 +24,25 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
 // normal (a mount on a rack wall), from what the pass against the dominant
 // plane kept (ws.plane_distance_m, ws.gap_widen_m: keep_plane_pass()
 // first), without reading the cloud again. Same outputs; kFlagPlane and
-// the returned count stay the dominant plane's.
+// the returned count stay the dominant plane's. One difference: when
+// plane_left_out_of_gap_list(), the dominant plane's inliers keep their gap
+// bit (the probes read it) but are left out of ws.gap.
 std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorConfig& cfg,
                                    float offset_m, Workspace& ws, std::uint32_t* valid_pixels);
+
+// Whether a search offset_m from the dominant plane leaves the plane's own
+// inliers out of its gap list: when a bar on that mount would have its
+// front face clear of the plane's inlier band (plane_inlier_m) by
+// kPlaneBandClearanceM. A search on a face a few centimetres deeper than
+// the dominant plane puts the whole plane inside its gap window (3.5 to
+// 8.7 cm above the mount), and the cross test would judge every pixel of
+// it, at half a frame per search; yet no bar's front can be among them.
+// A bar on that mount loses only the part of its sides inside the band.
+// The deepest mount searched is mount_search_m (5.2 cm) below the plane,
+// where an ISS bar's front stands 2.6 cm above it: every mount searched
+// qualifies.
+constexpr float kPlaneBandClearanceM = 0.01f;
+bool plane_left_out_of_gap_list(const DetectorConfig& cfg, float offset_m);
 // Keeps the last gap distance pass's distances (made against the dominant
 // plane) for gap_distance_shifted().
 void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws);
