@@ -312,6 +312,7 @@ bool pooled_cells_normal(const OrganizedCloud& cloud, const DetectorConfig& cfg,
   const int rows = static_cast<int>(cloud.height) / kCellPx;
   if (cols * rows <= 0 || cols * rows > kMaxCells) return false;
   Eigen::Matrix3d cov[kMaxCells];
+  Eigen::Vector3f cell_normals[kMaxCells];
   double count[kMaxCells] = {};
   int cells = 0;
   for (int cr = 0; cr < rows; ++cr) {
@@ -341,6 +342,7 @@ bool pooled_cells_normal(const OrganizedCloud& cloud, const DetectorConfig& cfg,
         continue;
       }
       cov[cells] = c;
+      cell_normals[cells] = cell_normal.cast<float>();
       count[cells] = m.n;
       ++cells;
     }
@@ -350,9 +352,7 @@ bool pooled_cells_normal(const OrganizedCloud& cloud, const DetectorConfig& cfg,
   const Eigen::Vector3f e1 = broad.normal.unitOrthogonal(), e2 = broad.normal.cross(e1);
   float tu[kMaxCells], tv[kMaxCells];
   for (int k = 0; k < cells; ++k) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-    solver.computeDirect(cov[k]);
-    Eigen::Vector3f nk = solver.eigenvectors().col(0).cast<float>();
+    Eigen::Vector3f nk = cell_normals[k];
     if (nk.dot(broad.normal) < 0.0f) nk = -nk;
     tu[k] = nk.dot(e1);
     tv[k] = nk.dot(e2);
