@@ -207,6 +207,9 @@ std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorCo
 }
 
 bool plane_left_out_of_gap_list(const DetectorConfig& cfg, float offset_m) {
+  // The plane's own search keeps the list the full pass makes, whichever
+  // pass wrote it.
+  if (offset_m == 0.0f) return false;
   const float front_above_plane_m =
       cfg.handrail.bar_center_offset_m + 0.5f * cfg.handrail.bar_depth_m + offset_m;
   return front_above_plane_m > cfg.plane_inlier_m + kPlaneBandClearanceM;

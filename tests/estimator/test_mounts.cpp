@@ -293,6 +293,9 @@ void test_search_below_the_plane_leaves_the_plane_out_of_the_list(void**) {
   // that a bar's front would meet the plane's band does not.
   assert_true(plane_left_out_of_gap_list(cfg, -cfg.mount_search_m));
   assert_false(plane_left_out_of_gap_list(cfg, -0.07f));
+  // The plane's own search, run again from the kept distances, keeps its
+  // list as the full pass makes it.
+  assert_false(plane_left_out_of_gap_list(cfg, 0.0f));
 }
 
 void test_iss_lengths_are_matched_by_ratio(void**) {

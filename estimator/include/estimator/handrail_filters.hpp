@@ -40,7 +40,7 @@ std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorCo
 // A bar on that mount loses only the part of its sides inside the band.
 // The deepest mount searched is mount_search_m (5.2 cm) below the plane,
 // where an ISS bar's front stands 2.6 cm above it: every mount searched
-// qualifies.
+// qualifies. The plane's own search (offset 0) keeps them.
 constexpr float kPlaneBandClearanceM = 0.01f;
 bool plane_left_out_of_gap_list(const DetectorConfig& cfg, float offset_m);
 // Keeps the last gap distance pass's distances (made against the dominant
