@@ -36,9 +36,20 @@ Eigen::Vector2d undistort(const hal::LensParameters& l, const Eigen::Vector2d& d
   return u;
 }
 
+bool within_lens_model(const hal::LensParameters& l, const Eigen::Vector2d& p) {
+  // d(r * radial(r^2)) / dr: positive while the model still maps larger
+  // angles farther out. Past its first zero the polynomial folds back, and a
+  // point far outside the field (65 deg off axis with this lens's k1) would
+  // land inside the image.
+  const double r2 = p.squaredNorm();
+  return 1.0 + r2 * (3.0 * l.k1 + r2 * (5.0 * l.k2 + r2 * 7.0 * l.k3)) > 0.0;
+}
+
 bool project(const CameraIntrinsics& cam, const Eigen::Vector3d& p, Eigen::Vector2d* pixel) {
   if (p.z() <= 1e-9) return false;
-  const Eigen::Vector2d d = distort(cam.lens, Eigen::Vector2d(p.x() / p.z(), p.y() / p.z()));
+  const Eigen::Vector2d undistorted(p.x() / p.z(), p.y() / p.z());
+  if (!within_lens_model(cam.lens, undistorted)) return false;
+  const Eigen::Vector2d d = distort(cam.lens, undistorted);
   *pixel = {cam.lens.cx_px + cam.lens.fx_px * d.x(), cam.lens.cy_px + cam.lens.fy_px * d.y()};
   return true;
 }

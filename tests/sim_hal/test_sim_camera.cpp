@@ -185,6 +185,23 @@ void test_field_of_view(void**) {
   assert_true(project(cam, rays[50 * 224 + 30].cast<double>(), &px));
   assert_near(px.x(), 30.0, 1e-3);
   assert_near(px.y(), 50.0, 1e-3);
+  // Every pixel's ray, the corners too, is within the lens model and
+  // projects back onto its pixel.
+  for (int row : {0, 170}) {
+    for (int col : {0, 223}) {
+      const Eigen::Vector3d ray = rays[row * 224 + col].cast<double>();
+      assert_true(project(cam, ray, &px));
+      assert_near(px.x(), col, 1e-3);
+      assert_near(px.y(), row, 1e-3);
+    }
+  }
+  // A point 65 deg off axis, far outside the 62 deg field: the distortion
+  // polynomial alone would fold it back to about pixel (223, 54).
+  const Eigen::Vector3d far_out(2.14, -0.61, 1.0);
+  const Eigen::Vector2d folded = distort(cam.lens, Eigen::Vector2d(2.14, -0.61));
+  assert_true(cam.lens.cx_px + cam.lens.fx_px * folded.x() < 224.0);
+  assert_false(project(cam, far_out, &px));
+  assert_false(within_lens_model(cam.lens, Eigen::Vector2d(2.14, -0.61)));
 }
 
 void test_bar_image_width(void**) {

@@ -27,8 +27,15 @@ Eigen::Vector2d distort(const hal::LensParameters& lens, const Eigen::Vector2d& 
 // distortion of this lens in a handful of steps).
 Eigen::Vector2d undistort(const hal::LensParameters& lens, const Eigen::Vector2d& distorted);
 
+// Whether a normalized image point (x / z, y / z) lies where the radial
+// distortion still grows with the angle off axis; the lens model means
+// nothing past that (this lens: about 53 deg off axis; its image's corners
+// are at 39 deg).
+bool within_lens_model(const hal::LensParameters& lens, const Eigen::Vector2d& undistorted);
+
 // Projects a camera-frame point to pixel coordinates; false when behind the
-// camera.
+// camera or outside the lens model (within_lens_model()), which a point far
+// outside the image would otherwise alias into it.
 bool project(const CameraIntrinsics& cam, const Eigen::Vector3d& p_cam, Eigen::Vector2d* pixel);
 
 // Unit ray directions, camera frame, one per pixel (row major), computed once.
