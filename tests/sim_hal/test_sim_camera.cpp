@@ -185,8 +185,8 @@ void test_field_of_view(void**) {
   assert_true(project(cam, rays[50 * 224 + 30].cast<double>(), &px));
   assert_near(px.x(), 30.0, 1e-3);
   assert_near(px.y(), 50.0, 1e-3);
-  // Every pixel's ray, the corners too, is within the lens model and
-  // projects back onto its pixel.
+  // The corners' rays, the farthest off axis, are within the lens model
+  // and project back onto their pixels.
   for (int row : {0, 170}) {
     for (int col : {0, 223}) {
       const Eigen::Vector3d ray = rays[row * 224 + col].cast<double>();
