@@ -204,6 +204,22 @@ void test_the_mount_under_a_bar(void**) {
   assert_false(find_mount_under_bar(m, cfg, -0.03f + kFront + 0.006f, 0.004f, &mount));
 }
 
+// The detector's configuration for testing_support's 160 x 120 scenes, and
+// their wall (z = 0.6 m, its normal toward the camera).
+DetectorConfig synthetic_scene_config() {
+  DetectorConfig cfg;
+  cfg.max_width = 160;
+  cfg.max_height = 120;
+  return cfg;
+}
+
+Plane synthetic_scene_wall() {
+  Plane wall;
+  wall.normal = Eigen::Vector3f(0, 0, -1);
+  wall.d = 0.6f;
+  return wall;
+}
+
 // The searches on other mounts shift the first pass's distances instead of
 // reading the cloud again: the same flags (the plane's own inliers apart),
 // gap list and distances as a full pass against the shifted wall.
@@ -216,12 +232,8 @@ void test_shifted_pass_equals_a_full_pass(void**) {
   pts[17].confidence = 0;  // an invalid pixel and a NaN one
   pts[400].z_m = NAN;
   cloud.points = pts.data();
-  DetectorConfig cfg;
-  cfg.max_width = 160;
-  cfg.max_height = 120;
-  Plane wall;
-  wall.normal = Eigen::Vector3f(0, 0, -1);
-  wall.d = 0.6f;
+  const DetectorConfig cfg = synthetic_scene_config();
+  const Plane wall = synthetic_scene_wall();
   Workspace shifted(cloud.size()), full(cloud.size());
   std::uint32_t valid_shifted = 0, valid_full = 0;
   gap_distance_test(cloud, cfg, wall, shifted, &valid_shifted);
@@ -259,12 +271,8 @@ void test_search_below_the_plane_leaves_the_plane_out_of_the_list(void**) {
   scene.noise_m = 0.002;
   std::vector<CloudPoint> pts;
   OrganizedCloud cloud = testing_support::render(scene, &pts, 5);
-  DetectorConfig cfg;
-  cfg.max_width = 160;
-  cfg.max_height = 120;
-  Plane wall;
-  wall.normal = Eigen::Vector3f(0, 0, -1);
-  wall.d = 0.6f;
+  const DetectorConfig cfg = synthetic_scene_config();
+  const Plane wall = synthetic_scene_wall();
   assert_true(plane_left_out_of_gap_list(cfg, kMount));
   Workspace ws(cloud.size());
   std::uint32_t valid = 0;
