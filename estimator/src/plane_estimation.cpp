@@ -372,13 +372,10 @@ bool pooled_cells_normal(const OrganizedCloud& cloud, const DetectorConfig& cfg,
       mode = k;
     }
   }
-  float deviation[kMaxCells];
-  for (int k = 0; k < cells; ++k) deviation[k] = std::hypot(tu[k] - tu[mode], tv[k] - tv[mode]);
-  const float limit = kCellAgree;
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   int used = 0;
   for (int k = 0; k < cells; ++k) {
-    if (deviation[k] > limit) continue;
+    if (std::hypot(tu[k] - tu[mode], tv[k] - tv[mode]) > kCellAgree) continue;
     scatter += cov[k] * count[k];
     ++used;
   }
