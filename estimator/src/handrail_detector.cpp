@@ -210,8 +210,11 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // mount the line was seated on).
   const float front_level_m = line->front_height_m + line->mount_offset_m - search_mount_m_;
   detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, ends, end_t, drop_m, front_level_m);
+  // Seen or not: an end the image's edge, an occluder or dropouts cut off
+  // still shows whatever of it lies in view. A handrail's front holds to
+  // its leg up to the cut; a cable coming down a ramp there has left the
+  // front's height before it (session 25).
   for (int e = 0; e < 2; ++e) {
-    if (!ends[e]) continue;
     const Eigen::Vector3f end_point = line->point + end_t[e] * line->axis;
     if (drop_m[e] > allowed_end_drop_m(cfg_, scale_, end_point.z())) return LineVerdict::kRampEnd;
   }

@@ -309,6 +309,54 @@ void test_short_ramps_are_refused_and_a_seat_track_is_no_ramp(void**) {
   assert_int_equal(rail_found, frames);
 }
 
+// The image's edge cuts a handrail-like cable part way down its ramp (2 cm
+// thick, centre 7 cm off a flat wall, coming down to the wall over 15 cm),
+// and its other end lies far out of view: no end is seen, but the part of
+// the ramp in view runs on below the front's height for 6.5 to 8 cm, more
+// than a leg's allowance (5 cm at this range). The cable is refused for its ramp (RAMP_END), and
+// only that refuses it (with the allowance opened up it is taken for a
+// handrail with no end in view). The 0.55 m rail on its seat track, its end
+// at the same cuts of the view, is found in every frame.
+void test_a_ramp_the_image_edge_cuts_is_still_a_ramp(void**) {
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = rail_on_seat_track_scene();
+  cable_scene.add_cable({Eigen::Vector3d(0.07, -1.5, 0.0), Eigen::Vector3d(0.07, 0.2, 0.0),
+                         Eigen::Vector3d(0.01, 0.35, 0.0)},
+                        0.02);
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  estimator::DetectorConfig no_ramp_test = cfg;
+  no_ramp_test.end_drop_max_m = 1.0f;
+  estimator::HandrailDetector detector(cfg), lenient(no_ramp_test);
+  Rendered r;
+  CableCounts cable;
+  int rail_found = 0, frames = 0;
+  const double tan_half_fov = std::tan(31.0 * M_PI / 180.0);
+  for (std::size_t f = 0; f < 5; ++f) {
+    // Face-on, 0.60 to 0.68 m out; the view's edge on the wall at y = 0.335
+    // to 0.345 m, short of the ramp's foot (0.35 m), and on the cable's
+    // front about 5 cm nearer the ramp's top (0.2 m). The front's height,
+    // with its noise allowance, gives out about 3 cm down the ramp.
+    const double k = static_cast<double>(f);
+    const double out_m = 0.6 + 0.02 * k, wall_cut_y_m = 0.335 + 0.0025 * k;
+    const Eigen::Vector3d position(out_m, wall_cut_y_m - out_m * tan_half_fov, 0.0);
+    const Eigen::Isometry3d T = sim_hal::camera_pose(
+        position, -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+    ++frames;
+    render_scene(cable_scene, T, f, &r);
+    cable.add(r.cloud, detector, lenient, estimator::LineVerdict::kRampEnd);
+    render_scene(rail_scene, T, f, &r);
+    rail_found += detector.detect(r.cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
+  }
+  std::printf(
+      "cable ramp cut by the image's edge: found %d of %d (%d refused for a ramp end; %d found "
+      "without the ramp test); the handrail there: %d of %d\n",
+      cable.found, frames, cable.refused, cable.found_lenient, rail_found, frames);
+  assert_int_equal(cable.found, 0);
+  assert_true(cable.refused >= frames - 1);
+  assert_true(cable.found_lenient >= frames - 1);
+  assert_int_equal(rail_found, frames);
+}
+
 // A handrail-like cable (2 cm thick, centre 7 cm off a flat wall, front 8
 // cm, as high as the ISS bar's 7.85 cm front) running out of the view both
 // ways: no end to test, and face-on nothing tells it from the bar. Seen 25
@@ -572,6 +620,7 @@ int main() {
       cmocka_unit_test(test_rack_walls_without_a_handrail_give_nothing),
       cmocka_unit_test(test_handrail_like_cable_is_refused_for_its_ramps),
       cmocka_unit_test(test_short_ramps_are_refused_and_a_seat_track_is_no_ramp),
+      cmocka_unit_test(test_a_ramp_the_image_edge_cuts_is_still_a_ramp),
       cmocka_unit_test(test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar),
       cmocka_unit_test(test_a_mount_read_off_the_bars_front_holds_the_rail),
       cmocka_unit_test(test_the_shortest_bar_partly_in_view_is_found),

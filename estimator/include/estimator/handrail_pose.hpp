@@ -65,7 +65,8 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
 // (a bar the image's edge cuts).
 bool touches_image_border(const OrganizedCloud& cloud, const IndexList& pixels, int margin_px);
 
-// The longest drop a seen end may show at depth z_m: the handrail's own
+// The longest drop an end may show at depth z_m, seen or cut off by the
+// image's edge, an occluder or dropouts: the handrail's own
 // (end_drop_max_m: its leg's length along the rail) plus two pixels at
 // that depth.
 float allowed_end_drop_m(const DetectorConfig& cfg, const PixelScale& scale, float z_m);
