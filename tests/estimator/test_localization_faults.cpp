@@ -11,6 +11,9 @@
 //                                     then RELOCALIZED (the rule); with the handrail
 //                                     holding: rejected every time; a single
 //                                     glitch: rejected once, nothing moves;
+//   an IMU glitch that sends the filter away from every GP pose at once
+//                                  -> after reinitialize_after rejections it
+//                                     starts again from the GP (RELOCALIZED);
 //   NaN, infinity or malformed input of any kind -> rejected, counted, the
 //                                     state untouched (bit for bit);
 //   too old, from the future, bad configuration -> their statuses.
@@ -288,6 +291,66 @@ void test_gp_jump_relocalizes_when_gp_only(void**) {
   assert_true(max_err_any < 0.08);           // never anywhere in between, never diverging
 }
 
+// An IMU glitch (5 m/s^2 more along y for 0.3 s, within what the input
+// checks pass) leaves the filter 1.5 m/s off: it runs away from every GP
+// pose at once, so their offsets from it never agree and the jump rule
+// never moves it (seen in the HIL perch: 10 m off after 15 s, every fix
+// gated). The divergence rule starts it again from the GP pose after
+// reinitialize_after rejections in a row; with the rule off it is still
+// metres off at the end.
+struct GlitchRun {
+  double final_error_m = 0.0, worst_after_25s_m = 0.0;
+  std::uint32_t reinitializations = 0;
+  int bad_health = 0;
+};
+
+GlitchRun run_with_imu_glitch(int reinitialize_after) {
+  SimConfig sc;
+  sc.seed = 43;
+  sc.duration_s = 35.0;
+  sc.handrail = false;
+  Sim sim(sc);
+  LocalizationConfig cfg = locsim::sim_filter_config(sc);
+  cfg.reinitialize_after = reinitialize_after;
+  auto f = std::make_unique<LocalizationFilter>(cfg);
+  GlitchRun r;
+  const int from = locsim::sample_at(sim, 15.0), to = locsim::sample_at(sim, 15.3);
+  locsim::run_events(
+      sim, sim.events(), *f,
+      [&](int, double t) {
+        if (!f->initialized()) return;
+        r.bad_health += f->check() != Health::kOk;
+        const double err = (f->state().p_world_body_m - sim.truth(t).p).norm();
+        if (t > 25.0) r.worst_after_25s_m = std::max(r.worst_after_25s_m, err);
+        r.final_error_m = err;
+      },
+      [](const Event&, UpdateStatus) {},
+      [&](int k) {
+        if (k < from || k >= to) return false;
+        ImuSample s = sim.imu()[static_cast<std::size_t>(k)];
+        s.a_body_mps2.y() += 5.0;
+        f->add_imu(s);
+        return true;  // the glitched sample in its place
+      });
+  r.reinitializations = f->counters().reinitializations;
+  return r;
+}
+
+void test_imu_glitch_divergence_reinitializes_from_gp(void**) {
+  const GlitchRun with = run_with_imu_glitch(LocalizationConfig{}.reinitialize_after);
+  const GlitchRun without = run_with_imu_glitch(100);
+  std::printf(
+      "  IMU glitch, GP only: %u reinitialisation(s), error after 25 s <= %.1f mm, at the end "
+      "%.1f mm; without the rule %.2f m at the end\n",
+      with.reinitializations, 1e3 * with.worst_after_25s_m, 1e3 * with.final_error_m,
+      without.final_error_m);
+  assert_int_equal(with.bad_health, 0);
+  assert_true(with.reinitializations >= 1);
+  assert_true(with.worst_after_25s_m < 0.08);  // back at the GP's bias level
+  assert_int_equal(static_cast<int>(without.reinitializations), 0);
+  assert_true(without.final_error_m > 1.0);
+}
+
 void test_gp_jump_rejected_while_handrail_holds(void**) {
   SimConfig sc;
   sc.seed = 42;
@@ -535,6 +598,7 @@ int main() {
       cmocka_unit_test(test_persistent_offset_drops_and_rebuilds_the_map),
       cmocka_unit_test(test_no_end_before_a_map_is_no_map),
       cmocka_unit_test(test_gp_jump_relocalizes_when_gp_only),
+      cmocka_unit_test(test_imu_glitch_divergence_reinitializes_from_gp),
       cmocka_unit_test(test_gp_jump_rejected_while_handrail_holds),
       cmocka_unit_test(test_single_gp_glitch_changes_nothing),
       cmocka_unit_test(test_non_finite_and_malformed_input_is_rejected_untouched),

@@ -54,6 +54,7 @@ const char* validate(const LocalizationConfig& c) {
   if (!in(c.max_future_s, 0.0, 0.5)) return "max_future_s";
   if (!in(c.gate_probability, 0.5, 1.0 - 1e-9)) return "gate_probability";
   if (c.relocalize_after < 1 || c.relocalize_after > 100) return "relocalize_after";
+  if (c.reinitialize_after < 1 || c.reinitialize_after > 100) return "reinitialize_after";
   if (!positive_below(c.relocalize_agreement_m, 10.0)) return "relocalize_agreement_m";
   if (!positive_below(c.relocalize_agreement_rad, 3.2)) return "relocalize_agreement_rad";
   const Eigen::Matrix3d& R = c.T_body_cam.linear();

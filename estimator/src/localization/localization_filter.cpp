@@ -55,7 +55,7 @@ void LocalizationFilter::reset() {
   initialized_ = lost_ = false;
   floor_us_ = 0;
   have_handrail_accept_ = false;
-  handrail_rejections_in_row_ = gp_rejections_in_row_ = 0;
+  handrail_rejections_in_row_ = gp_rejections_in_row_ = gp_any_rejections_in_row_ = 0;
 }
 
 void LocalizationFilter::reset_handrail_map() {
@@ -309,27 +309,36 @@ UpdateStatus LocalizationFilter::initialize_from(const GpPose& g, std::int64_t t
   return UpdateStatus::kInitialized;
 }
 
-UpdateStatus LocalizationFilter::relocalize_to(const GpPose& g, const Prior& pr) {
+UpdateStatus LocalizationFilter::relocalize_to(const GpPose& g, const Prior& pr,
+                                               bool reset_dynamics) {
   NominalState x = pr.x;
   x.p_world_body_m = g.p_world_body_m;
   x.q_world_body = g.q_world_body.normalized();
-  // Position and attitude start again from the pose; their correlations with
-  // the rest are gone with the old estimate.
-  Covariance P = pr.P;
-  for (int block : {kPos, kAtt}) {
-    P.middleRows<3>(block).setZero();
-    P.middleCols<3>(block).setZero();
-  }
   const Covariance pose = initial_covariance(cfg_, g.cov);
-  P.block<3, 3>(kPos, kPos) = pose.block<3, 3>(kPos, kPos);
-  P.block<3, 3>(kPos, kAtt) = pose.block<3, 3>(kPos, kAtt);
-  P.block<3, 3>(kAtt, kPos) = pose.block<3, 3>(kAtt, kPos);
-  P.block<3, 3>(kAtt, kAtt) = pose.block<3, 3>(kAtt, kAtt);
+  Covariance P = pr.P;
+  if (reset_dynamics) {
+    x.v_world_body_mps.setZero();
+    x.gyro_bias_radps = cfg_.init_gyro_bias_radps;
+    x.accel_bias_mps2 = cfg_.init_accel_bias_mps2;
+    P = pose;
+    ++counters_.reinitializations;
+  } else {
+    // Position and attitude start again from the pose; their correlations
+    // with the rest are gone with the old estimate.
+    for (int block : {kPos, kAtt}) {
+      P.middleRows<3>(block).setZero();
+      P.middleCols<3>(block).setZero();
+    }
+    P.block<3, 3>(kPos, kPos) = pose.block<3, 3>(kPos, kPos);
+    P.block<3, 3>(kPos, kAtt) = pose.block<3, 3>(kPos, kAtt);
+    P.block<3, 3>(kAtt, kPos) = pose.block<3, 3>(kAtt, kPos);
+    P.block<3, 3>(kAtt, kAtt) = pose.block<3, 3>(kAtt, kAtt);
+  }
   store_.clear();
   if (map_.map().valid) ++counters_.map_resets;
   drop_map();
   lost_ = false;
-  gp_rejections_in_row_ = 0;
+  gp_rejections_in_row_ = gp_any_rejections_in_row_ = 0;
   restart_at(pr, x, P);
   return UpdateStatus::kRelocalized;
 }
@@ -383,7 +392,7 @@ UpdateStatus LocalizationFilter::add_gp_pose(const GpPose& g) {
   }
   st = last_.status;
   if (st == UpdateStatus::kAccepted) {
-    gp_rejections_in_row_ = 0;
+    gp_rejections_in_row_ = gp_any_rejections_in_row_ = 0;
     lost_ = false;
     StoredMeasurement& m = scratch_;
     m.kind = kind;
@@ -393,14 +402,18 @@ UpdateStatus LocalizationFilter::add_gp_pose(const GpPose& g) {
     store_and_replay(m, pr, x, P);
   } else if (st == UpdateStatus::kRejectedGate || st == UpdateStatus::kRejectedJump) {
     if (handrail_holding()) {
-      gp_rejections_in_row_ = 0;
+      gp_rejections_in_row_ = gp_any_rejections_in_row_ = 0;
     } else {
       gp_rejections_in_row_ = st == UpdateStatus::kRejectedJump ? gp_rejections_in_row_ + 1 : 1;
+      ++gp_any_rejections_in_row_;
       last_rejected_dp_ = dp;
       last_rejected_dtheta_ = dtheta;
+      // The rejections before were counted as such; this one is the move.
       if (gp_rejections_in_row_ >= cfg_.relocalize_after) {
-        // The rejections before were counted as such; this one is the move.
-        st = relocalize_to(g, pr);
+        st = relocalize_to(g, pr, /*reset_dynamics=*/false);
+        last_.status = st;
+      } else if (gp_any_rejections_in_row_ >= cfg_.reinitialize_after) {
+        st = relocalize_to(g, pr, /*reset_dynamics=*/true);
         last_.status = st;
       }
     }

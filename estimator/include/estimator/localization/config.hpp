@@ -78,6 +78,10 @@ struct LocalizationConfig {
   int relocalize_after = 3;
   double relocalize_agreement_m = 0.05;
   double relocalize_agreement_rad = 0.05;
+  // Divergence (the rule, in localization_filter.hpp): this many GP poses
+  // in a row rejected, whatever their offsets, with no handrail holding the
+  // pose: the filter starts again from the GP pose, velocity and biases too.
+  int reinitialize_after = 6;
 
   // Handrail measurements.
   Eigen::Isometry3d T_body_cam = default_T_body_cam();

@@ -48,6 +48,16 @@
 //     near the filter again (a glitch that came back) goes through the gate
 //     as usual and ends the pending jump. So a jump is never taken part way:
 //     rejected whole, or taken whole after agreeing poses.
+//   - Divergence: a filter whose velocity or biases went wrong (an IMU
+//     glitch, a bad update) runs away from every fix at once, so the GP
+//     poses it rejects never agree with each other's offsets and the jump
+//     rule never moves it. reinitialize_after GP poses in a row rejected
+//     (gate or jump, whatever their offsets) with no handrail holding the
+//     pose start the filter again from the newest (kRelocalized, counted in
+//     reinitializations): position and attitude from the pose, velocity zero
+//     and biases from the configuration, the covariance as at the start;
+//     the stored updates, the handrail map and the history before it
+//     dropped. A pose accepted or the handrail holding resets the count.
 //   Handrail. The map (handrail_map.hpp) is built from the first confident
 //     sightings (kMapSighting, kMapInitialized); an NE sighting before it
 //     exists is kNoMap. With a map, each measurement is an update
@@ -151,7 +161,9 @@ class LocalizationFilter {
   // Sets the state at pr's time (a fresh start: the history before is cut).
   void restart_at(const Prior& pr, const NominalState& x, const Covariance& P);
   UpdateStatus initialize_from(const GpPose& g, std::int64_t t_eff);
-  UpdateStatus relocalize_to(const GpPose& g, const Prior& pr);
+  // reset_dynamics: velocity and biases from the configuration as well,
+  // the whole covariance as at the start (a diverged filter's are suspect).
+  UpdateStatus relocalize_to(const GpPose& g, const Prior& pr, bool reset_dynamics);
   void drop_map();
   void raise_floor_past(std::int64_t t_us);
 
@@ -173,6 +185,7 @@ class LocalizationFilter {
   std::int64_t last_handrail_accept_us_ = 0;
   int handrail_rejections_in_row_ = 0;
   int gp_rejections_in_row_ = 0;
+  int gp_any_rejections_in_row_ = 0;  // whatever their offsets (divergence)
   Eigen::Vector3d last_rejected_dp_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_rejected_dtheta_ = Eigen::Vector3d::Zero();
   NominalState default_state_;
