@@ -1,0 +1,241 @@
+// Handrail-like cables against the handrail on the simulator's walls
+// (issue #17): each test of what a handrail is beyond its height (ramps at
+// the ends, whether the view's edge cuts them or not, and the side face seen
+// from across the bar) refuses the cable, only that test refuses it, and the
+// ISS handrail on its seat track seen the same way is still found.
+#include <cmath>
+#include <cstdio>
+
+#include "cmocka_cpp.hpp"
+#include "estimator/handrail_detector.hpp"
+#include "rack_test_scenes.hpp"
+
+namespace {
+
+using racktest::flat_wall_scene;
+using racktest::rail_on_seat_track_scene;
+using racktest::render_scene;
+using racktest::Rendered;
+
+// A handrail-like cable's frames: how often the detector takes it, how
+// often its best line is refused for `verdict`, and how often a detector
+// without that test takes it.
+struct CableCounts {
+  int found = 0, refused = 0, found_lenient = 0;
+  void add(const estimator::OrganizedCloud& cloud, estimator::HandrailDetector& detector,
+           estimator::HandrailDetector& lenient, estimator::LineVerdict verdict) {
+    const estimator::HandrailDetection d = detector.detect(cloud);
+    found += d.status == estimator::DetectStatus::kFound ? 1 : 0;
+    refused += d.counts.first_rejection == verdict ? 1 : 0;
+    found_lenient += lenient.detect(cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
+  }
+};
+
+// The cable scene and the rail scene seen from the same poses: the cable
+// counted for one test's verdict, the rail found or not; then that test
+// alone refuses the cable (in every view but one at most) and the rail is
+// found in every view.
+struct CableAgainstRail {
+  CableCounts cable;
+  int rail_found = 0, frames = 0;
+  void view(const sim_hal::Scene& cable_scene, const sim_hal::Scene& rail_scene,
+            const Eigen::Isometry3d& T, std::size_t f, estimator::HandrailDetector& detector,
+            estimator::HandrailDetector& lenient, estimator::LineVerdict verdict, Rendered* r) {
+    ++frames;
+    render_scene(cable_scene, T, f, r);
+    cable.add(r->cloud, detector, lenient, verdict);
+    render_scene(rail_scene, T, f, r);
+    rail_found += detector.detect(r->cloud).status == estimator::DetectStatus::kFound ? 1 : 0;
+  }
+  void report_and_check(const char* what, const char* refused_as, const char* test) const {
+    std::printf(
+        "%s: found %d of %d (%d refused %s; %d found without the %s); the handrail there: "
+        "%d of %d\n",
+        what, cable.found, frames, cable.refused, refused_as, cable.found_lenient, test, rail_found,
+        frames);
+    assert_int_equal(cable.found, 0);
+    assert_true(cable.refused >= frames - 1);
+    assert_true(cable.found_lenient >= frames - 1);
+    assert_int_equal(rail_found, frames);
+  }
+};
+
+// Renders the scene from T_world_cam and says whether the detector finds a
+// handrail there with both ends seen.
+bool found_with_both_ends(const sim_hal::Scene& scene, const Eigen::Isometry3d& T_world_cam,
+                          std::size_t f, estimator::HandrailDetector& detector, Rendered* r) {
+  render_scene(scene, T_world_cam, f, r);
+  const estimator::HandrailDetection h = detector.detect(r->cloud);
+  return h.status == estimator::DetectStatus::kFound &&
+         h.state == estimator::HandrailState::kBothEnds;
+}
+
+// A handrail-like cable (2 cm thick, straight over 0.4 m at a handrail's
+// height, 7 cm off a flat wall) comes down to the wall in 15 cm ramps; a
+// handrail's front holds to its legs. With both ends in view the cable is
+// refused for its ramps (RAMP_END), and only that refuses it: with the
+// ramp allowance opened up it is taken for a handrail. The handrail in the
+// same place is found, both ends seen.
+void test_handrail_like_cable_is_refused_for_its_ramps(void**) {
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = flat_wall_scene();
+  // Centre 7 cm off the wall, front 8 cm: the bar's front is 7.85 cm.
+  cable_scene.add_cable({Eigen::Vector3d(0.01, -0.35, 0.0), Eigen::Vector3d(0.07, -0.2, 0.0),
+                         Eigen::Vector3d(0.07, 0.2, 0.0), Eigen::Vector3d(0.01, 0.35, 0.0)},
+                        0.02);
+  sim_hal::Handrail rail;
+  rail.kind = sim_hal::HandrailKind::kIss;
+  rail.axis = Eigen::Vector3d::UnitY();
+  rail_scene.add_handrail(rail);
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  estimator::DetectorConfig no_ramp_test = cfg;
+  no_ramp_test.end_drop_max_m = 1.0f;
+  estimator::HandrailDetector detector(cfg), lenient(no_ramp_test);
+  Rendered r;
+  CableCounts cable;
+  int rail_found = 0, frames = 0;
+  for (std::size_t f = 0; f < 5; ++f) {
+    const Eigen::Isometry3d T = sim_hal::camera_pose(
+        Eigen::Vector3d(0.65 + 0.03 * static_cast<double>(f), 0.02 * static_cast<double>(f), 0.0),
+        -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+    ++frames;
+    render_scene(cable_scene, T, f, &r);
+    cable.add(r.cloud, detector, lenient, estimator::LineVerdict::kRampEnd);
+    rail_found += found_with_both_ends(rail_scene, T, f, detector, &r) ? 1 : 0;
+  }
+  std::printf(
+      "handrail-like cable: found %d of %d (%d refused for a ramp end; %d found without "
+      "the ramp test); the handrail there: %d of %d, both ends\n",
+      cable.found, frames, cable.refused, cable.found_lenient, rail_found, frames);
+  assert_int_equal(cable.found, 0);
+  assert_true(cable.refused >= 3);
+  assert_true(cable.found_lenient >= 3);
+  assert_int_equal(rail_found, frames);
+}
+
+// The same cable with the clutter's short ramps (8 cm, as the station's
+// facts give a handrail-like cable): most of each ramp lies below the gap
+// window's floor, so only the raised structure counted down to the wall
+// shows it for a ramp. A handrail standing on a seat track that runs on
+// 15 cm past both its ends is still found with both ends (a guard: in
+// these views the track's noise stays under 2 cm even counted from the
+// wall; the development frames where it did not, and why the count now
+// starts at the bar's mount, are in sim_hal/README.md).
+void test_short_ramps_are_refused_and_a_seat_track_is_no_ramp(void**) {
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = rail_on_seat_track_scene();
+  cable_scene.add_cable({Eigen::Vector3d(0.01, -0.28, 0.0), Eigen::Vector3d(0.07, -0.2, 0.0),
+                         Eigen::Vector3d(0.07, 0.2, 0.0), Eigen::Vector3d(0.01, 0.28, 0.0)},
+                        0.02);
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  estimator::HandrailDetector detector(cfg);
+  Rendered r;
+  int cable_found = 0, cable_found_straight_on = 0, ramp_refusals = 0, rail_found = 0, frames = 0;
+  for (std::size_t f = 0; f < 10; ++f) {
+    // Straight on, then from about 30 deg off the normal both along and
+    // across the bar, where the track beside and past the bar shows most.
+    const double k = static_cast<double>(f % 5);
+    const Eigen::Vector3d position = f < 5 ? Eigen::Vector3d(0.65 + 0.03 * k, 0.02 * k, 0.0)
+                                           : Eigen::Vector3d(0.5 + 0.03 * k, 0.3, 0.25);
+    const Eigen::Vector3d facing = f < 5 ? Eigen::Vector3d(-Eigen::Vector3d::UnitX())
+                                         : Eigen::Vector3d(-position.normalized());
+    const Eigen::Isometry3d T =
+        sim_hal::camera_pose(position, facing, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+    ++frames;
+    render_scene(cable_scene, T, f, &r);
+    const estimator::HandrailDetection d = detector.detect(r.cloud);
+    cable_found += d.status == estimator::DetectStatus::kFound ? 1 : 0;
+    cable_found_straight_on += d.status == estimator::DetectStatus::kFound && f < 5 ? 1 : 0;
+    ramp_refusals += d.counts.first_rejection == estimator::LineVerdict::kRampEnd ? 1 : 0;
+    rail_found += found_with_both_ends(rail_scene, T, f, detector, &r) ? 1 : 0;
+  }
+  std::printf(
+      "cable with 8 cm ramps: found %d of %d (%d straight on; %d refused for a ramp end); the "
+      "handrail on a seat track: %d of %d, both ends\n",
+      cable_found, frames, cable_found_straight_on, ramp_refusals, rail_found, frames);
+  // Seen obliquely one ramp can hide behind the cable itself; straight on
+  // both show, and the measure before this one passed all five.
+  assert_int_equal(cable_found_straight_on, 0);
+  assert_true(cable_found <= 1);
+  assert_true(ramp_refusals >= 8);
+  assert_int_equal(rail_found, frames);
+}
+
+// The image's edge cuts a handrail-like cable part way down its ramp (2 cm
+// thick, centre 7 cm off a flat wall, coming down to the wall over 15 cm),
+// and its other end lies far out of view: no end is seen, but the part of
+// the ramp in view runs on below the front's height for 6.5 to 8 cm, more
+// than a leg's allowance (5 cm at this range). The cable is refused for its ramp (RAMP_END), and
+// only that refuses it (with the allowance opened up it is taken for a
+// handrail with no end in view). The 0.55 m rail on its seat track, its end
+// at the same cuts of the view, is found in every frame.
+void test_a_ramp_the_image_edge_cuts_is_still_a_ramp(void**) {
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = rail_on_seat_track_scene();
+  cable_scene.add_cable({Eigen::Vector3d(0.07, -1.5, 0.0), Eigen::Vector3d(0.07, 0.2, 0.0),
+                         Eigen::Vector3d(0.01, 0.35, 0.0)},
+                        0.02);
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  estimator::DetectorConfig no_ramp_test = cfg;
+  no_ramp_test.end_drop_max_m = 1.0f;
+  estimator::HandrailDetector detector(cfg), lenient(no_ramp_test);
+  Rendered r;
+  CableAgainstRail seen;
+  const double tan_half_fov = std::tan(31.0 * M_PI / 180.0);
+  for (std::size_t f = 0; f < 5; ++f) {
+    // Face-on, 0.60 to 0.68 m out; the view's edge on the wall at y = 0.335
+    // to 0.345 m, short of the ramp's foot (0.35 m), and on the cable's
+    // front about 5 cm nearer the ramp's top (0.2 m). The front's height,
+    // with its noise allowance, gives out about 3 cm down the ramp.
+    const double k = static_cast<double>(f);
+    const double out_m = 0.6 + 0.02 * k, wall_cut_y_m = 0.335 + 0.0025 * k;
+    const Eigen::Vector3d position(out_m, wall_cut_y_m - out_m * tan_half_fov, 0.0);
+    const Eigen::Isometry3d T = sim_hal::camera_pose(
+        position, -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+    seen.view(cable_scene, rail_scene, T, f, detector, lenient, estimator::LineVerdict::kRampEnd,
+              &r);
+  }
+  seen.report_and_check("cable ramp cut by the image's edge", "for a ramp end", "ramp test");
+}
+
+// A handrail-like cable (2 cm thick, centre 7 cm off a flat wall, front 8
+// cm, as high as the ISS bar's 7.85 cm front) running out of the view both
+// ways: no end to test, and face-on nothing tells it from the bar. Seen 25
+// to 30 deg across from the side, the bar shows its side face down to its
+// back, the cable only its upper half: the cable is refused for its shallow
+// profile (SHALLOW_PROFILE), and only that refuses it (with the test off it
+// is taken for a handrail). An ISS handrail on a seat track seen the same
+// way is found.
+void test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar(void**) {
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = rail_on_seat_track_scene();
+  cable_scene.add_cable({Eigen::Vector3d(0.07, -1.5, 0.0), Eigen::Vector3d(0.07, 1.5, 0.0)}, 0.02);
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  estimator::DetectorConfig no_profile_test = cfg;
+  no_profile_test.profile_min_spread_m = 0.0f;
+  estimator::HandrailDetector detector(cfg), lenient(no_profile_test);
+  Rendered r;
+  CableAgainstRail seen;
+  for (std::size_t f = 0; f < 6; ++f) {
+    // Above or below the bar (across it), 0.55 to 0.65 m out: 25 to 30 deg.
+    const double k = static_cast<double>(f % 3), side = f < 3 ? 1.0 : -1.0;
+    const Eigen::Vector3d position(0.55 + 0.05 * k, 0.03 * k, side * (0.27 + 0.03 * k));
+    const Eigen::Isometry3d T = sim_hal::camera_pose(
+        position, -position.normalized(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+    seen.view(cable_scene, rail_scene, T, f, detector, lenient,
+              estimator::LineVerdict::kShallowProfile, &r);
+  }
+  seen.report_and_check("handrail-like cable seen from its side", "as too shallow", "profile test");
+}
+
+}  // namespace
+
+int main() {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_handrail_like_cable_is_refused_for_its_ramps),
+      cmocka_unit_test(test_short_ramps_are_refused_and_a_seat_track_is_no_ramp),
+      cmocka_unit_test(test_a_ramp_the_image_edge_cuts_is_still_a_ramp),
+      cmocka_unit_test(test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
