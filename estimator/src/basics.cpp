@@ -98,6 +98,7 @@ const char* validate(const DetectorConfig& c) {
   if (c.front_peak_mounts > kMaxMountHypotheses - c.max_mount_hypotheses) {
     return "front_peak_mounts";
   }
+  if (!(c.line_max_turn_deg > 0.0f && c.line_max_turn_deg <= 90.0f)) return "line_max_turn_deg";
   if (!(c.profile_min_obliquity_deg >= 0.0f && c.profile_min_obliquity_deg <= 90.0f)) {
     return "profile_min_obliquity_deg";
   }
@@ -159,6 +160,8 @@ const char* to_string(LineVerdict verdict) {
       return "SOLID_BELOW";
     case LineVerdict::kTooFar:
       return "TOO_FAR";
+    case LineVerdict::kCrossesBar:
+      return "CROSSES_BAR";
     case LineVerdict::kBeamLength:
       return "BEAM_LENGTH";
   }

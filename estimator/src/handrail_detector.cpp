@@ -191,6 +191,13 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   if (!estimate_center_line(cloud, cfg_, wall_, inliers, ws_, line)) {
     return LineVerdict::kNoCenterLine;
   }
+  // Algorithm 2 ranks lines by the candidate pixels near them, so a line
+  // may cross a bar at an angle and collect the patch under it. That
+  // patch's front face runs along the bar, not the line, and the end walk
+  // would find the bar's sides as two ends a few centimetres apart: the
+  // 0.55 m rail passed as an 8.5 in handrail (issue #19's HIL run). The bar
+  // itself is its own family's line.
+  if (!line_follows_front(refined->direction, *line, cfg_)) return LineVerdict::kCrossesBar;
   if (!seat_on_mount(cloud, inliers, line)) return LineVerdict::kWrongHeight;
   // The mount it was seated on must be there beside it (wall_ is the
   // search's mount plane; the line's mount is measured from the dominant one).

@@ -193,6 +193,12 @@ bool bar_front_height_test(const DetectorConfig& cfg, const CenterLine& line) {
   return std::fabs(line.front_height_m - expected) < cfg.front_height_tolerance_m;
 }
 
+bool line_follows_front(const Eigen::Vector3f& candidate_direction, const CenterLine& line,
+                        const DetectorConfig& cfg) {
+  const float cos_turn = std::fabs(candidate_direction.dot(line.axis));
+  return cos_turn >= std::cos(cfg.line_max_turn_deg * 3.14159265f / 180.0f);
+}
+
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
                  bool end_seen[2], float end_t_m[2], float end_drop_m[2], float front_level_m) {

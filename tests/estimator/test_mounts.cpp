@@ -541,6 +541,9 @@ void test_bad_mount_and_type_settings_are_named(void**) {
   cfg.profile_min_spread_m = NAN;
   assert_string_equal(validate(cfg), "profile_min_spread_m");
   cfg = DetectorConfig{};
+  cfg.line_max_turn_deg = 0.0f;
+  assert_string_equal(validate(cfg), "line_max_turn_deg");
+  cfg = DetectorConfig{};
   cfg.clearance_low_m = 0.04f;  // above the band's top
   assert_string_equal(validate(cfg), "clearance_low_m");
   cfg = DetectorConfig{};

@@ -137,7 +137,12 @@ struct DetectorConfig {
   std::uint32_t line_score_samples = 600;
   std::uint32_t line_attempts = 6;  // searches after rejected lines
   float line_inlier_m = 0.015f;
-  float cluster_gap_m = 0.05f;          // d_r
+  float cluster_gap_m = 0.05f;  // d_r
+  // The most the front face's own direction (estimate_center_line) may
+  // turn from the line the candidates gave: a line crossing a bar at an
+  // angle collects a short patch of it, whose front face runs along the
+  // bar, not along the line (CROSSES_BAR).
+  float line_max_turn_deg = 20.0f;
   float beam_length_min_ratio = 0.75f;  // b_H,min / b_H when both ends seen
   float beam_length_max_ratio = 1.25f;  // b_H,max / b_H
   float min_visible_length_m = 0.08f;   // shorter segments are clutter

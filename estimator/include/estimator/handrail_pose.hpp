@@ -45,6 +45,14 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
 // handrail width at other heights.
 bool bar_front_height_test(const DetectorConfig& cfg, const CenterLine& line);
 
+// The centre line's axis (the front face's own direction) must run within
+// line_max_turn_deg of the candidate line it was estimated from. A line
+// that crosses a bar at an angle collects only the patch of the bar under
+// it; that patch's front face runs along the bar, and the end walk would
+// then find the bar's sides as two ends a few centimetres apart.
+bool line_follows_front(const Eigen::Vector3f& candidate_direction, const CenterLine& line,
+                        const DetectorConfig& cfg);
+
 // Walks the image past each extreme inlier along the bar. An end is seen
 // when the walk leaves the bar and meets the wall; it is not seen when the
 // walk leaves the image, meets invalid pixels or something in front.

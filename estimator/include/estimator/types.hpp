@@ -39,6 +39,7 @@ enum class LineVerdict : std::uint8_t {
   kShallowProfile,  // seen from its side, no deeper than a cable (bar_profile.hpp)
   kSolidBelow,      // its side face reaches down where a grip needs space (bar_clearance.hpp)
   kTooFar,          // its visible middle lies beyond max_find_range_m
+  kCrossesBar,      // the bar's front runs at an angle to the line (line_max_turn_deg)
 };
 const char* to_string(LineVerdict verdict);
 

@@ -34,6 +34,7 @@ constexpr FloatKey kFloatKeys[] = {
     {"run_peak_tolerance_m", &estimator::DetectorConfig::run_peak_tolerance_m},
     {"line_inlier_m", &estimator::DetectorConfig::line_inlier_m},
     {"cluster_gap_m", &estimator::DetectorConfig::cluster_gap_m},
+    {"line_max_turn_deg", &estimator::DetectorConfig::line_max_turn_deg},
     {"beam_length_min_ratio", &estimator::DetectorConfig::beam_length_min_ratio},
     {"beam_length_max_ratio", &estimator::DetectorConfig::beam_length_max_ratio},
     {"min_visible_length_m", &estimator::DetectorConfig::min_visible_length_m},
