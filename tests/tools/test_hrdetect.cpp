@@ -155,6 +155,29 @@ void test_mounts_are_reported_when_asked(void**) {
   assert_true(r.out.find("}}\n") != std::string::npos);
 }
 
+// A frame's id seeds the detector's random stream. By default the files
+// are numbered in order; --frame-ids-from-names takes the id a recorded
+// run's frame had (hrframes' frame_NNNNN.pcd), so that the flight's answer
+// is reproduced. A name that ends in no digits is refused by name and the
+// other files are still processed.
+void test_frame_ids_from_names(void**) {
+  const std::string named = g_dir + "/frame_00042.pcd", plain = g_dir + "/wall.pcd";
+  for (const std::string& copy : {named, plain}) {
+    std::ifstream in(kGood, std::ios::binary);
+    std::ofstream out(copy, std::ios::binary);
+    out << in.rdbuf();
+  }
+  Result r = run({named, plain});
+  assert_int_equal(r.exit_status, 0);
+  expect_in(r, "frame_00042.pcd\",\"frame_id\":0,");
+  expect_in(r, "wall.pcd\",\"frame_id\":1,");
+  r = run({"--frame-ids-from-names", plain, named});
+  assert_int_equal(r.exit_status, 1);
+  assert_int_equal(r.json_lines, 1);
+  expect_in(r, "frame_00042.pcd\",\"frame_id\":42,");
+  expect_in(r, "wall.pcd: --frame-ids-from-names: the name ends in no frame id");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -173,6 +196,7 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_an_empty_folder_is_an_error),
       cmocka_unit_test(test_results_that_cannot_be_written_are_an_error),
       cmocka_unit_test(test_mounts_are_reported_when_asked),
+      cmocka_unit_test(test_frame_ids_from_names),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

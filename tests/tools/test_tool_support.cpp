@@ -88,7 +88,7 @@ void test_detection_json(void**) {
   d.processing_time_us = 1250;
   assert_string_equal(
       tools::detection_to_json("a\"b.pcd", d).c_str(),
-      "{\"frame\":\"a\\\"b.pcd\",\"state\":\"NH\",\"reason\":\"NO_LINE\",\"first_"
+      "{\"frame\":\"a\\\"b.pcd\",\"frame_id\":0,\"state\":\"NH\",\"reason\":\"NO_LINE\",\"first_"
       "line\":\"ACCEPTED\",\"mounts\":{\"found\":0,\"tried\":0},\"time_ms\":1.250}");
   d.status = estimator::DetectStatus::kFound;
   d.state = estimator::HandrailState::kOneEnd;

@@ -34,7 +34,9 @@ std::string vec(const Eigen::Vector3f& v) {
 std::string detection_to_json(const std::string& frame, const estimator::HandrailDetection& d) {
   char time_ms[32];
   std::snprintf(time_ms, sizeof time_ms, "%.3f", d.processing_time_us / 1000.0);
-  std::string s = "{\"frame\":\"" + escape(frame) + "\",\"state\":\"" + to_string(d.state) + "\"";
+  std::string s = "{\"frame\":\"" + escape(frame) +
+                  "\",\"frame_id\":" + std::to_string(d.frame_id) + ",\"state\":\"" +
+                  to_string(d.state) + "\"";
   if (d.status == estimator::DetectStatus::kFound) {
     s += ",\"position\":" + vec(d.p_cam_center);
     s += ",\"axis\":" + vec(d.axis());

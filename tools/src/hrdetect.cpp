@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -38,6 +39,11 @@ void usage(FILE* out) {
                "                           the given order: track the handrail over them (the\n"
                "                           paper's Tr1..Tr3 and an outlier gate) and add a\n"
                "                           \"track\" object to each line\n"
+               "  --frame-ids-from-names   each file's frame id (the detector's random stream)\n"
+               "                           from the digits that end its name, frame_00042.pcd\n"
+               "                           is 42, as hrframes names a recorded run's frames:\n"
+               "                           the flight estimator's answer on the same frame;\n"
+               "                           without it the files are numbered 0, 1, ... in order\n"
                "  --mounts                 add a \"mount_search\" object to each line: the\n"
                "                           surfaces in view and the mounts searched, as\n"
                "                           distances from the dominant plane (tools/README.md)\n"
@@ -93,6 +99,19 @@ std::string stem(const std::string& path) {
   return s;
 }
 
+// The frame id a file's name ends with (frame_00042.pcd: 42); false when
+// the name ends in no digits.
+bool frame_id_from_name(const std::string& path, std::uint64_t* id) {
+  const std::string s = stem(path);
+  std::size_t start = s.size();
+  while (start > 0 && std::isdigit(static_cast<unsigned char>(s[start - 1]))) --start;
+  if (start == s.size() || s.size() - start > 18) return false;
+  std::uint64_t value = 0;
+  for (std::size_t k = start; k < s.size(); ++k) value = 10 * value + (s[k] - '0');
+  *id = value;
+  return true;
+}
+
 // One picture per stage (common/stage_pictures.hpp), each written to
 // DIR/NAME_STAGE.png. False, with *error, when a picture could not be
 // written; the others are still written.
@@ -114,7 +133,7 @@ int main(int argc, char** argv) {
   estimator::Method method = estimator::Method::kProposed;
   std::string config_path, debug_dir, handrail = "iss";
   double gripper_deg = 0.0;
-  bool gripper_given = false, sequence = false, show_mounts = false;
+  bool gripper_given = false, sequence = false, show_mounts = false, ids_from_names = false;
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -161,6 +180,8 @@ int main(int argc, char** argv) {
       sequence = true;
     } else if (a == "--mounts") {
       show_mounts = true;
+    } else if (a == "--frame-ids-from-names") {
+      ids_from_names = true;
     } else if (a == "--debug-png") {
       debug_dir = next("--debug-png");
     } else if (!a.empty() && a[0] == '-') {
@@ -215,7 +236,16 @@ int main(int argc, char** argv) {
       all_read = false;
       continue;
     }
-    const hal::DepthFrame frame = pcd.view(frame_id++, 0);
+    std::uint64_t id = frame_id++;
+    if (ids_from_names && !frame_id_from_name(file, &id)) {
+      std::fprintf(stderr,
+                   "hrdetect: %s: --frame-ids-from-names: the name ends in no frame id "
+                   "(as frame_00042.pcd); skipped\n",
+                   file.c_str());
+      all_read = false;
+      continue;
+    }
+    const hal::DepthFrame frame = pcd.view(id, 0);
     const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
     const estimator::HandrailDetection d = detector.detect(cloud, method);
     std::string line = tools::detection_to_json(file, d);
