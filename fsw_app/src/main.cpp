@@ -303,6 +303,9 @@ int main(int argc, char** argv) {
   hub.subscribe(fsw_app::channel::kArmState, &arm_box);
   hub.subscribe(fsw_app::channel::kEstimatorHealth, &health_box);
   hub.subscribe(fsw_app::channel::kApproachStatus, &approach_box);
+  // Every estimate, wherever the estimator runs: the summary's sightings.
+  fsw_app::SightingTally sightings(cfg.estimator);
+  hub.subscribe(fsw_app::channel::kHandrailEstimate, &sightings);
   fsw_app::Publisher<hrp::perch_command_t> command_pub(hub, fsw_app::channel::kPerchCommand);
   // Every subscription is made by now: the channel list is fixed.
   fsw_app::InputHealthReporter input_health(hub, fsw_app::task_names(opt.tasks));
@@ -515,6 +518,13 @@ int main(int argc, char** argv) {
 
   health_box.read(&summary.health);
   arm_box.read(&summary.arm);
+  {
+    // Reported where an estimator ran here or its estimates were heard.
+    const fsw_app::SightingReport heard = sightings.report();
+    std::uint64_t total = heard.counts.rejected;
+    for (std::uint64_t n : heard.counts.by_state) total += n;
+    if (estimator_task || total > 0) summary.sightings = heard;
+  }
 #ifdef HRP_WITH_SIM
   if (world) {
     summary.grasp_error_m = world->stats().grasp_error_m;

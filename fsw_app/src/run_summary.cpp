@@ -161,6 +161,34 @@ void print_frames(const RunSummary& s, std::FILE* out) {
   }
 }
 
+// What the estimator reported, frame by frame: the states, and for the
+// frames with both ends seen the length range and the ISS types matched.
+void print_sightings(const RunSummary& s, std::FILE* out) {
+  if (!s.sightings) return;
+  const SightingCounts& c = s.sightings->counts;
+  std::fprintf(out, "  sightings           BE %llu",
+               static_cast<unsigned long long>(c.by_state[1]));
+  if (c.by_state[1] > 0) {
+    std::fprintf(out, " (%.2f to %.2f m:", c.be_length_min_m, c.be_length_max_m);
+    const char* sep = " ";
+    for (std::uint32_t k = 0; k <= estimator::kMaxHandrailTypes; ++k) {
+      if (c.be_by_type[k] == 0) continue;
+      const bool named = k < s.sightings->type_count;
+      std::fprintf(out, "%s%s %llu", sep, named ? s.sightings->type_names[k] : "no type",
+                   static_cast<unsigned long long>(c.be_by_type[k]));
+      sep = ", ";
+    }
+    std::fprintf(out, ")");
+  }
+  std::fprintf(out, ", OE %llu, NE %llu, none %llu", static_cast<unsigned long long>(c.by_state[2]),
+               static_cast<unsigned long long>(c.by_state[3]),
+               static_cast<unsigned long long>(c.by_state[0]));
+  if (c.rejected > 0) {
+    std::fprintf(out, ", %llu refused", static_cast<unsigned long long>(c.rejected));
+  }
+  std::fprintf(out, "\n");
+}
+
 // One line for the checked inputs; a line per channel that refused any.
 void print_inputs(const RunSummary& s, std::FILE* out) {
   const hrp::input_health_t& in = s.inputs;
@@ -255,6 +283,7 @@ void print_perch_summary(const Options& opt, const RunSummary& s, std::FILE* out
                  s.grasp_error_m * 1000.0);
   }
   print_frames(s, out);
+  print_sightings(s, out);
   if (s.arm_loop) {
     const CycleStats& a = *s.arm_loop;
     std::fprintf(out,
@@ -297,6 +326,7 @@ void print_replay_summary(const Options& opt, const RunSummary& s, std::FILE* ou
     }
   }
   print_frames(s, out);
+  print_sightings(s, out);
   print_inputs(s, out);
   print_log(opt, s, out);
 }
@@ -325,6 +355,32 @@ void write_errors_json(const char* name, const PoseErrorStats& e, std::FILE* f) 
                "\"%s\": {\"samples\": %lld, \"mean_m\": %.5f, \"max_m\": %.5f, \"mean_deg\": %.3f, "
                "\"max_deg\": %.3f}",
                name, static_cast<long long>(e.samples), e.mean_m, e.max_m, e.mean_deg, e.max_deg);
+}
+
+// "sightings": {"nh", "be", "oe", "ne", "rejected", "be_length_min_m",
+// "be_length_max_m", "be_types": {name: count, ..., "none": count}}; null
+// without an estimator's results here.
+void write_sightings_json(const RunSummary& s, std::FILE* f) {
+  if (!s.sightings) {
+    std::fprintf(f, "\"sightings\": null, ");
+    return;
+  }
+  const SightingCounts& c = s.sightings->counts;
+  std::fprintf(f,
+               "\"sightings\": {\"nh\": %llu, \"be\": %llu, \"oe\": %llu, \"ne\": %llu, "
+               "\"rejected\": %llu, \"be_length_min_m\": %.4f, \"be_length_max_m\": %.4f, "
+               "\"be_types\": {",
+               static_cast<unsigned long long>(c.by_state[0]),
+               static_cast<unsigned long long>(c.by_state[1]),
+               static_cast<unsigned long long>(c.by_state[2]),
+               static_cast<unsigned long long>(c.by_state[3]),
+               static_cast<unsigned long long>(c.rejected), c.be_length_min_m, c.be_length_max_m);
+  for (std::uint32_t k = 0; k < s.sightings->type_count; ++k) {
+    std::fprintf(f, "\"%s\": %llu, ", s.sightings->type_names[k],
+                 static_cast<unsigned long long>(c.be_by_type[k]));
+  }
+  std::fprintf(f, "\"none\": %llu}}, ",
+               static_cast<unsigned long long>(c.be_by_type[estimator::kMaxHandrailTypes]));
 }
 
 // "localization": {"approach": {"filter": {...}, "gp": {...}}, "grasp": {...},
@@ -417,6 +473,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
                static_cast<long long>(s.log_lost), s.stop.stopped ? "true" : "false", s.stop.signal,
                s.stop.at_rest ? "true" : "false");
   write_camera_json(s, f);
+  write_sightings_json(s, f);
   write_localization_json(s, f);
   write_inputs_json(s.inputs, f);
   std::fprintf(f, "}\n");

@@ -15,6 +15,7 @@
 #include "fsw_app/log_player.hpp"
 #include "fsw_app/periodic_thread.hpp"
 #include "fsw_app/royale_path_report.hpp"
+#include "fsw_app/sighting_tally.hpp"
 #include "fsw_app/usb_path_report.hpp"
 #include "hrp/arm_state_t.hpp"
 #include "hrp/estimator_health_t.hpp"
@@ -69,6 +70,7 @@ struct RunSummary {
   StopReport stop;
   std::optional<LocalizationScore> localization;  // the simulated world's scoring
   std::optional<LocalizerReport> localizer;       // a localization task here
+  std::optional<SightingReport> sightings;        // HANDRAIL_ESTIMATE over the run
 };
 
 // "SIGINT", "SIGTERM".
