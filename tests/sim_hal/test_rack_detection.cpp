@@ -349,9 +349,6 @@ void test_a_find_with_no_end_in_view_does_not_end_the_mount_search(void**) {
   assert_true(with_end >= found - 1);
 }
 
-// The search over mounts (every surface in view, each searched in turn)
-// allocates nothing: the frames are rendered first, then detected with the
-// counter armed.
 // A line that crosses a bar at an angle (Algorithm 2 ranks lines by the
 // candidate pixels near them, and a diagonal through a bar collects the
 // patch under it) is refused (CROSSES_BAR): measured as it stood, the end
@@ -405,6 +402,9 @@ void test_a_line_across_the_bar_is_refused(void**) {
   assert_true(short_finds_old >= 1);
 }
 
+// The search over mounts (every surface in view, each searched in turn)
+// allocates nothing: the frames are rendered first, then detected with the
+// counter armed.
 void test_searching_mounts_allocates_nothing(void**) {
   const sim_hal::Scenario sc = load("rack-table2-iss-mesh-21-5.json");
   constexpr int kFrames = 12;
