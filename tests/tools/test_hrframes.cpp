@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -106,10 +105,7 @@ Result run(const std::vector<std::string>& args) {
   Result r;
   r.exit_status =
       testing_support::wait_for_exit(testing_support::spawn_program(g_program, args, log));
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.out = ss.str();
+  r.out = testing_support::read_text(log);
   return r;
 }
 
@@ -117,13 +113,6 @@ void expect_in(const std::string& text, const std::string& want) {
   if (text.find(want) == std::string::npos) {
     fail_msg("expected \"%s\" in:\n%s", want.c_str(), text.c_str());
   }
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 bool exists(const std::string& path) {
@@ -164,7 +153,7 @@ void test_frames_and_estimates_are_written(void**) {
     }
     assert_int_equal(pcd.points.back().confidence, 0);
   }
-  const std::string est = read_file(out + "/estimates.jsonl");
+  const std::string est = testing_support::read_text(out + "/estimates.jsonl");
   expect_in(est,
             "{\"frame_id\":5,\"state\":\"BE\",\"detect_status\":0,\"bar_length_m\":0.5500,"
             "\"inliers\":420,\"position\":[0.00000,0.00000,0.60000],"
@@ -185,7 +174,7 @@ void test_frames_and_estimates_are_written(void**) {
   assert_true(exists(some + "/frame_00001.pcd"));
   assert_true(exists(some + "/frame_00002.pcd"));
   assert_false(exists(some + "/frame_00003.pcd"));
-  const std::string some_est = read_file(some + "/estimates.jsonl");
+  const std::string some_est = testing_support::read_text(some + "/estimates.jsonl");
   expect_in(some_est, "{\"frame_id\":1,");
   assert_true(some_est.find("\"frame_id\":3,") == std::string::npos);
 }
