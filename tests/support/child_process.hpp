@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cmocka_cpp.hpp"
+#include "test_data.hpp"
 
 extern char** environ;
 
@@ -45,6 +46,21 @@ inline int wait_for_exit(pid_t pid) {
 
 inline int run_to_exit(const std::string& program, std::vector<std::string> args) {
   return wait_for_exit(spawn_program(program, std::move(args)));
+}
+
+// A run to its exit with what it printed (stdout and stderr together, by
+// way of the file `out_path`).
+struct RunOutput {
+  int exit_status = -1;
+  std::string out;
+};
+
+inline RunOutput run_capturing(const std::string& program, std::vector<std::string> args,
+                               const std::string& out_path) {
+  RunOutput r;
+  r.exit_status = wait_for_exit(spawn_program(program, std::move(args), out_path));
+  r.out = read_text(out_path);
+  return r;
 }
 
 }  // namespace testing_support

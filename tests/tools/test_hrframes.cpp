@@ -95,18 +95,10 @@ hrp::handrail_estimate_t estimate(long id) {
   return m;
 }
 
-struct Result {
-  int exit_status = -1;
-  std::string out;  // stdout and stderr together
-};
+using Result = testing_support::RunOutput;
 
 Result run(const std::vector<std::string>& args) {
-  const std::string log = g_dir + "/out.txt";
-  Result r;
-  r.exit_status =
-      testing_support::wait_for_exit(testing_support::spawn_program(g_program, args, log));
-  r.out = testing_support::read_text(log);
-  return r;
+  return testing_support::run_capturing(g_program, args, g_dir + "/out.txt");
 }
 
 void expect_in(const std::string& text, const std::string& want) {
