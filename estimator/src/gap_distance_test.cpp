@@ -2,7 +2,9 @@
 // It is the frame's largest cost after the cloud has been streamed in, so
 // it works on four pixels at a time with the compiler's portable 128-bit
 // vectors (SSE2 on the host, NEON on the BeagleBone's Cortex-A8): the
-// same source, no intrinsics, and the last few pixels as a block padded with invalid points.
+// same source, no intrinsics, and the last few pixels as a block padded
+// with invalid points. Values move between a point's fields and a vector's
+// lanes by 4 x 4 transposes (shuffles), not lane by lane.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -25,6 +27,27 @@ struct GapTestLimits {
   float plane_inlier_m, wall_tolerance_m;
 };
 
+// The coordinates and noise of four points, a vector each: one vector load
+// per point (its first four floats) and a 4 x 4 transpose, rather than a
+// scalar load and an insert per value.
+static_assert(offsetof(CloudPoint, x_m) == 0 && offsetof(CloudPoint, y_m) == 4 &&
+                  offsetof(CloudPoint, z_m) == 8 && offsetof(CloudPoint, noise_m) == 12,
+              "a point starts with x, y, z and noise as four floats");
+inline __attribute__((always_inline)) void load_four_points(const CloudPoint* p, Floats4* x,
+                                                            Floats4* y, Floats4* z,
+                                                            Floats4* noise) {
+  Floats4 rows[4];
+  for (int j = 0; j < 4; ++j) std::memcpy(&rows[j], &p[j].x_m, sizeof rows[j]);
+  const Floats4 xy01 = __builtin_shuffle(rows[0], rows[1], Ints4{0, 4, 1, 5});
+  const Floats4 zn01 = __builtin_shuffle(rows[0], rows[1], Ints4{2, 6, 3, 7});
+  const Floats4 xy23 = __builtin_shuffle(rows[2], rows[3], Ints4{0, 4, 1, 5});
+  const Floats4 zn23 = __builtin_shuffle(rows[2], rows[3], Ints4{2, 6, 3, 7});
+  *x = __builtin_shuffle(xy01, xy23, Ints4{0, 1, 4, 5});
+  *y = __builtin_shuffle(xy01, xy23, Ints4{2, 3, 6, 7});
+  *z = __builtin_shuffle(zn01, zn23, Ints4{0, 1, 4, 5});
+  *noise = __builtin_shuffle(zn01, zn23, Ints4{2, 3, 6, 7});
+}
+
 // Four pixels' flags and wall distances. Lanes are all-ones where a
 // comparison holds, so a flag is its lane masked with the flag's bit.
 // Validity is is_usable_point() in fewer steps: a NaN or infinite
@@ -32,12 +55,12 @@ struct GapTestLimits {
 // rejects a NaN, infinite or non-positive z. A noisy pixel's gap window is
 // widened by twice its standard deviation, the noise bounded to [0, 2 cm]
 // with NaN as 0, so no bad value can open the windows.
-Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* distance_m,
-                           float* widen_m, float* inverse_depth_per_m) {
-  const Floats4 x = {p[0].x_m, p[1].x_m, p[2].x_m, p[3].x_m};
-  const Floats4 y = {p[0].y_m, p[1].y_m, p[2].y_m, p[3].y_m};
-  const Floats4 z = {p[0].z_m, p[1].z_m, p[2].z_m, p[3].z_m};
-  const Floats4 noise = {p[0].noise_m, p[1].noise_m, p[2].noise_m, p[3].noise_m};
+inline __attribute__((always_inline)) Ints4 classify_four_pixels(const CloudPoint* p,
+                                                                 const GapTestLimits& g,
+                                                                 float* distance_m, float* widen_m,
+                                                                 float* inverse_depth_per_m) {
+  Floats4 x, y, z, noise;
+  load_four_points(p, &x, &y, &z, &noise);
   const Ints4 confidence = {p[0].confidence, p[1].confidence, p[2].confidence, p[3].confidence};
   const Floats4 s = g.nx * x + g.ny * y + g.nz * z + g.d;
   const Ints4 valid = (confidence != 0) & (z >= g.min_range_m) & (z <= g.max_range_m) & (s == s);
@@ -66,8 +89,11 @@ Ints4 classify_four_pixels(const CloudPoint* p, const GapTestLimits& g, float* d
 // Four pixels of the shifted pass: the dominant plane's distance s0
 // (-infinity where invalid, which every comparison below but "valid" keeps
 // so) moved by the mount's offset.
-Ints4 classify_four_shifted(const float* plane_distance_m, const float* widen_m,
-                            const GapTestLimits& g, float offset_m, float* distance_m) {
+inline __attribute__((always_inline)) Ints4 classify_four_shifted(const float* plane_distance_m,
+                                                                  const float* widen_m,
+                                                                  const GapTestLimits& g,
+                                                                  float offset_m,
+                                                                  float* distance_m) {
   Floats4 s0, widen;
   std::memcpy(&s0, plane_distance_m, sizeof s0);
   std::memcpy(&widen, widen_m, sizeof widen);
@@ -84,9 +110,29 @@ Ints4 classify_four_shifted(const float* plane_distance_m, const float* widen_m,
   return (valid & kValid) | (on_plane & kPlane) | (in_gap & kGap) | (on_wall & kWall);
 }
 
-// The pass over every pixel, four at a time: `block(k)` classifies pixels
-// k..k+3 (writing their distances), `tail(k, rest)` the last one to three,
-// padded with invalid pixels (writing only the real ones' distances). Here
+// Sixteen pixels' flags (four blocks of four, each lane 0 to 255) stored
+// as sixteen bytes in pixel order. Converting a vector of four ints to four
+// bytes lane by lane is scalar code on SSE2; instead the four blocks are
+// transposed, so that vector B holds byte B of every 32-bit word of the
+// result, and shifted into place.
+void store_flag_bytes(const Ints4 flags[4], std::uint8_t* out) {
+  const Ints4 ab_low = __builtin_shuffle(flags[0], flags[1], Ints4{0, 4, 1, 5});
+  const Ints4 ab_high = __builtin_shuffle(flags[0], flags[1], Ints4{2, 6, 3, 7});
+  const Ints4 cd_low = __builtin_shuffle(flags[2], flags[3], Ints4{0, 4, 1, 5});
+  const Ints4 cd_high = __builtin_shuffle(flags[2], flags[3], Ints4{2, 6, 3, 7});
+  const Ints4 byte0 = __builtin_shuffle(ab_low, cd_low, Ints4{0, 1, 4, 5});
+  const Ints4 byte1 = __builtin_shuffle(ab_low, cd_low, Ints4{2, 3, 6, 7});
+  const Ints4 byte2 = __builtin_shuffle(ab_high, cd_high, Ints4{0, 1, 4, 5});
+  const Ints4 byte3 = __builtin_shuffle(ab_high, cd_high, Ints4{2, 3, 6, 7});
+  const Ints4 words = byte0 | (byte1 << 8) | (byte2 << 16) | (byte3 << 24);
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "byte 0 of a word is its first pixel");
+  std::memcpy(out, &words, sizeof words);
+}
+
+// The pass over every pixel, in blocks of sixteen (four vectors, their
+// flags stored with one vector store), then of four: `block(k)` classifies
+// pixels k..k+3 (writing their distances), `tail(k, rest)` the last one to
+// three, padded with invalid pixels (writing only the real ones' distances). Here
 // the flags are stored, the lanes counted and the gap list built; a pixel
 // with any of the `list_skips` flags keeps its gap bit but is left out of
 // the list.
@@ -107,6 +153,24 @@ std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pi
   Ints4 valid_lanes = {0, 0, 0, 0}, plane_lanes = {0, 0, 0, 0};
   constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap;
   std::size_t k = 0;
+  for (; k + 16 <= n; k += 16) {
+    const Ints4 flags[4] = {block(k), block(k + 4), block(k + 8), block(k + 12)};
+    store_flag_bytes(flags, flags_out + k);
+    Ints4 gap_bits[4], any_gap = {0, 0, 0, 0};
+    for (int v = 0; v < 4; ++v) {
+      valid_lanes -= (flags[v] & kValid) != 0;
+      plane_lanes -= (flags[v] & kPlane) != 0;
+      gap_bits[v] = (flags[v] & kGap) & ((flags[v] & list_skips) == 0);
+      any_gap |= gap_bits[v];
+    }
+    if ((any_gap[0] | any_gap[1] | any_gap[2] | any_gap[3]) == 0) continue;
+    for (int v = 0; v < 4; ++v) {
+      for (int j = 0; j < 4; ++j) {
+        gap_out[gap_count] = static_cast<std::int32_t>(k + 4 * v + j);
+        gap_count += gap_bits[v][j] != 0;
+      }
+    }
+  }
   for (; k + 4 <= n; k += 4) {
     const Ints4 flags = block(k);
     const Bytes4 flag_bytes = __builtin_convertvector(flags, Bytes4);
