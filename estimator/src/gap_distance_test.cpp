@@ -115,7 +115,7 @@ inline __attribute__((always_inline)) Ints4 classify_four_shifted(const float* p
 // bytes lane by lane is scalar code on SSE2; instead the four blocks are
 // transposed, so that vector B holds byte B of every 32-bit word of the
 // result, and shifted into place.
-void store_flag_bytes(const Ints4 flags[4], std::uint8_t* out) {
+Ints4 store_flag_bytes(const Ints4 flags[4], std::uint8_t* out) {
   const Ints4 ab_low = __builtin_shuffle(flags[0], flags[1], Ints4{0, 4, 1, 5});
   const Ints4 ab_high = __builtin_shuffle(flags[0], flags[1], Ints4{2, 6, 3, 7});
   const Ints4 cd_low = __builtin_shuffle(flags[2], flags[3], Ints4{0, 4, 1, 5});
@@ -127,24 +127,63 @@ void store_flag_bytes(const Ints4 flags[4], std::uint8_t* out) {
   const Ints4 words = byte0 | (byte1 << 8) | (byte2 << 16) | (byte3 << 24);
   static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "byte 0 of a word is its first pixel");
   std::memcpy(out, &words, sizeof words);
+  return words;
 }
+
+// Bit 0 of each of eight bytes gathered into one byte, byte i into bit i
+// (each byte's bit lands in the product's top byte exactly once, with no
+// carries between them).
+std::uint32_t gather_low_bits(std::uint64_t eight_bytes) {
+  return static_cast<std::uint32_t>(
+      ((eight_bytes & 0x0101010101010101ull) * 0x0102040810204080ull) >> 56);
+}
+
+// Which of sixteen pixels' flag bytes go on the gap list: the gap bit, and
+// not the plane bit when the plane is left out. Bit j is pixel j.
+std::uint32_t gap_list_mask(const Ints4& flag_bytes, bool plane_left_out) {
+  static_assert(kFlagGap == 1u << 2 && kFlagPlane == 1u << 1, "the bits shifted to bit 0");
+  std::uint64_t half[2];
+  std::memcpy(half, &flag_bytes, sizeof half);
+  std::uint32_t mask = 0;
+  for (int h = 0; h < 2; ++h) {
+    const std::uint64_t keep = (half[h] >> 2) & ~(plane_left_out ? half[h] >> 1 : 0ull);
+    mask |= gather_low_bits(keep) << (8 * h);
+  }
+  return mask;
+}
+
+// The gap list's entries for four pixels from their four mask bits: the
+// lanes of the set bits, in order, as one vector (the rest don't care), and
+// how many there are. All four slots are written and the count moves on by
+// the bits set, so there is no branch per pixel.
+struct LaneList {
+  Ints4 lanes;
+  std::int32_t count;
+};
+constexpr LaneList kSetLanes[16] = {
+    {{0, 0, 0, 0}, 0}, {{0, 0, 0, 0}, 1}, {{1, 0, 0, 0}, 1}, {{0, 1, 0, 0}, 2},
+    {{2, 0, 0, 0}, 1}, {{0, 2, 0, 0}, 2}, {{1, 2, 0, 0}, 2}, {{0, 1, 2, 0}, 3},
+    {{3, 0, 0, 0}, 1}, {{0, 3, 0, 0}, 2}, {{1, 3, 0, 0}, 2}, {{0, 1, 3, 0}, 3},
+    {{2, 3, 0, 0}, 2}, {{0, 2, 3, 0}, 3}, {{1, 2, 3, 0}, 3}, {{0, 1, 2, 3}, 4},
+};
 
 // The pass over every pixel, in blocks of sixteen (four vectors, their
 // flags stored with one vector store), then of four: `block(k)` classifies
 // pixels k..k+3 (writing their distances), `tail(k, rest)` the last one to
-// three, padded with invalid pixels (writing only the real ones' distances). Here
-// the flags are stored, the lanes counted and the gap list built; a pixel
-// with any of the `list_skips` flags keeps its gap bit but is left out of
+// three, padded with invalid pixels (writing only the real ones' distances).
+// Here the flags are stored, the lanes counted and the gap list built; with
+// `plane_left_out` a pixel on the plane keeps its gap bit but is left out of
 // the list.
 //
 // Invalid pixels are scattered over a ToF frame, so the gap list is built
-// without branches: every index is written and the count advances only
-// when the pixel belongs (the list has a slot per pixel). The outputs are
+// without a branch per pixel: slots are written whether or not the pixel
+// belongs, and the count advances only by those that do (the list has a
+// slot per pixel). The outputs are
 // locals: byte stores through a member could alias anything and force
 // reloads.
 template <class Block, class Tail>
 std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pixels, Block block,
-                           Tail tail, std::int32_t list_skips) {
+                           Tail tail, bool plane_left_out) {
   std::uint8_t* flags_out = ws.flags.get();
   std::int32_t* gap_out = ws.gap.begin();
   std::size_t valid_count = 0, gap_count = 0, plane_inliers = 0;
@@ -152,23 +191,24 @@ std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pi
   // of four is at most 4 per lane, so 2^31 / 4 pixels cannot overflow.
   Ints4 valid_lanes = {0, 0, 0, 0}, plane_lanes = {0, 0, 0, 0};
   constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap;
+  const std::int32_t list_skips = plane_left_out ? kPlane : 0;
   std::size_t k = 0;
   for (; k + 16 <= n; k += 16) {
     const Ints4 flags[4] = {block(k), block(k + 4), block(k + 8), block(k + 12)};
-    store_flag_bytes(flags, flags_out + k);
-    Ints4 gap_bits[4], any_gap = {0, 0, 0, 0};
+    const Ints4 flag_bytes = store_flag_bytes(flags, flags_out + k);
     for (int v = 0; v < 4; ++v) {
       valid_lanes -= (flags[v] & kValid) != 0;
       plane_lanes -= (flags[v] & kPlane) != 0;
-      gap_bits[v] = (flags[v] & kGap) & ((flags[v] & list_skips) == 0);
-      any_gap |= gap_bits[v];
     }
-    if ((any_gap[0] | any_gap[1] | any_gap[2] | any_gap[3]) == 0) continue;
+    const std::uint32_t mask = gap_list_mask(flag_bytes, plane_left_out);
+    if (mask == 0) continue;
+    // Four slots written from gap_count on, which stays at most k + 4 v:
+    // within the block's own slots of the list (one per pixel).
     for (int v = 0; v < 4; ++v) {
-      for (int j = 0; j < 4; ++j) {
-        gap_out[gap_count] = static_cast<std::int32_t>(k + 4 * v + j);
-        gap_count += gap_bits[v][j] != 0;
-      }
+      const LaneList& set = kSetLanes[(mask >> (4 * v)) & 15u];
+      const Ints4 entries = set.lanes + static_cast<std::int32_t>(k + 4 * v);
+      std::memcpy(gap_out + gap_count, &entries, sizeof entries);
+      gap_count += static_cast<std::size_t>(set.count);
     }
   }
   for (; k + 4 <= n; k += 4) {
@@ -236,7 +276,7 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
     }
     return flags;
   };
-  return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail, 0);
+  return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail, false);
 }
 
 void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws) {
@@ -267,7 +307,7 @@ std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorCo
     return flags;
   };
   return run_gap_pass(cloud.size(), ws, valid_pixels, block, tail,
-                      plane_left_out_of_gap_list(cfg, offset_m) ? kFlagPlane : 0);
+                      plane_left_out_of_gap_list(cfg, offset_m));
 }
 
 bool plane_left_out_of_gap_list(const DetectorConfig& cfg, float offset_m) {

@@ -84,13 +84,27 @@ LevelsBeside find_levels_beside(const OrganizedCloud& cloud, const DetectorConfi
   std::uint32_t hist[2][kBins] = {};
   std::uint32_t band_pixels[2] = {0, 0};
   const BandBeside band(cfg, wall, line);
-  // Two passes over the sample: the histogram, then the mean near its peak.
+  // Two passes: the histogram over the sample, then the mean near its peak
+  // over the band's heights, kept from the first (side 0's from the front
+  // of the buffer, side 1's from its back, each in the sample's order). The
+  // sample holds at most kMaxRefitSamples pixels (its capacity).
+  constexpr std::size_t kMaxHeights = Workspace::kMaxRefitSamples;
+  float height_m[kMaxHeights];
+  std::size_t heights[2] = {0, 0};
   for (std::int32_t i : ws.sample) {
     const Eigen::Vector3f p = position(cloud.points[i]);
     const int side = band.side_of(p);
     if (side < 0) continue;
     ++band_pixels[side];
-    const float x = (wall.signed_distance(p) - lo_m) / kBin_m;
+    const float h = wall.signed_distance(p);
+    if (heights[0] + heights[1] < kMaxHeights) {
+      if (side == 0) {
+        height_m[heights[0]++] = h;
+      } else {
+        height_m[kMaxHeights - 1 - heights[1]++] = h;
+      }
+    }
+    const float x = (h - lo_m) / kBin_m;
     if (!(x >= 0.0f && x < static_cast<float>(bins))) continue;  // NaN too
     ++hist[side][static_cast<int>(x)];
   }
@@ -115,14 +129,14 @@ LevelsBeside find_levels_beside(const OrganizedCloud& cloud, const DetectorConfi
   if (!have[0] && !have[1]) return out;
   double sum[2] = {0.0, 0.0};
   std::uint32_t near[2] = {0, 0};
-  for (std::int32_t i : ws.sample) {
-    const Eigen::Vector3f p = position(cloud.points[i]);
-    const int side = band.side_of(p);
-    if (side < 0 || !have[side]) continue;
-    const float h = wall.signed_distance(p);
-    if (std::fabs(h - peak_m[side]) <= kRefine_m) {
-      sum[side] += h;
-      ++near[side];
+  for (int side = 0; side < 2; ++side) {
+    if (!have[side]) continue;
+    for (std::size_t k = 0; k < heights[side]; ++k) {
+      const float h = height_m[side == 0 ? k : kMaxHeights - 1 - k];
+      if (std::fabs(h - peak_m[side]) <= kRefine_m) {
+        sum[side] += h;
+        ++near[side];
+      }
     }
   }
   for (int side = 0; side < 2; ++side) {
