@@ -138,18 +138,11 @@ std::uint32_t gather_low_bits(std::uint64_t eight_bytes) {
       ((eight_bytes & 0x0101010101010101ull) * 0x0102040810204080ull) >> 56);
 }
 
-// Which of sixteen pixels' flag bytes go on the gap list: the gap bit, and
-// not the plane bit when the plane is left out. Bit j is pixel j.
-std::uint32_t gap_list_mask(const Ints4& flag_bytes, bool plane_left_out) {
-  static_assert(kFlagGap == 1u << 2 && kFlagPlane == 1u << 1, "the bits shifted to bit 0");
-  std::uint64_t half[2];
-  std::memcpy(half, &flag_bytes, sizeof half);
-  std::uint32_t mask = 0;
-  for (int h = 0; h < 2; ++h) {
-    const std::uint64_t keep = (half[h] >> 2) & ~(plane_left_out ? half[h] >> 1 : 0ull);
-    mask |= gather_low_bits(keep) << (8 * h);
-  }
-  return mask;
+// How many of eight bytes have bit 0 set (their sum, at most 8, lands in
+// the product's top byte).
+std::uint32_t count_low_bits(std::uint64_t eight_bytes) {
+  return static_cast<std::uint32_t>(
+      ((eight_bytes & 0x0101010101010101ull) * 0x0101010101010101ull) >> 56);
 }
 
 // The gap list's entries for four pixels from their four mask bits: the
@@ -196,11 +189,19 @@ std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pi
   for (; k + 16 <= n; k += 16) {
     const Ints4 flags[4] = {block(k), block(k + 4), block(k + 8), block(k + 12)};
     const Ints4 flag_bytes = store_flag_bytes(flags, flags_out + k);
-    for (int v = 0; v < 4; ++v) {
-      valid_lanes -= (flags[v] & kValid) != 0;
-      plane_lanes -= (flags[v] & kPlane) != 0;
+    // The counts and the list's mask from the packed bytes, eight pixels
+    // to a 64-bit word.
+    std::uint64_t half[2];
+    std::memcpy(half, &flag_bytes, sizeof half);
+    std::uint32_t mask = 0;
+    for (int h = 0; h < 2; ++h) {
+      static_assert(kFlagValid == 1u && kFlagPlane == 1u << 1 && kFlagGap == 1u << 2,
+                    "the valid, plane and gap bits shifted to bit 0");
+      valid_count += count_low_bits(half[h]);
+      plane_inliers += count_low_bits(half[h] >> 1);
+      const std::uint64_t listed = (half[h] >> 2) & ~(plane_left_out ? half[h] >> 1 : 0ull);
+      mask |= gather_low_bits(listed) << (8 * h);
     }
-    const std::uint32_t mask = gap_list_mask(flag_bytes, plane_left_out);
     if (mask == 0) continue;
     // Four slots written from gap_count on, which stays at most k + 4 v:
     // within the block's own slots of the list (one per pixel).
