@@ -11,12 +11,14 @@
 #include <limits>
 
 #include "estimator/handrail_filters.hpp"
+#include "four_lanes.hpp"
 
 namespace estimator {
 namespace {
 
-typedef float Floats4 __attribute__((vector_size(16)));
-typedef std::int32_t Ints4 __attribute__((vector_size(16)));
+using four_lanes::Floats4;
+using four_lanes::Ints4;
+using four_lanes::load_four_points;
 typedef std::uint8_t Bytes4 __attribute__((vector_size(4)));
 
 // What the pass needs of the wall and the configuration, once per frame.
@@ -26,27 +28,6 @@ struct GapTestLimits {
   float gap_lo_m, gap_hi_m;  // eq. 1's window on the signed wall distance
   float plane_inlier_m, wall_tolerance_m;
 };
-
-// The coordinates and noise of four points, a vector each: one vector load
-// per point (its first four floats) and a 4 x 4 transpose, rather than a
-// scalar load and an insert per value.
-static_assert(offsetof(CloudPoint, x_m) == 0 && offsetof(CloudPoint, y_m) == 4 &&
-                  offsetof(CloudPoint, z_m) == 8 && offsetof(CloudPoint, noise_m) == 12,
-              "a point starts with x, y, z and noise as four floats");
-inline __attribute__((always_inline)) void load_four_points(const CloudPoint* p, Floats4* x,
-                                                            Floats4* y, Floats4* z,
-                                                            Floats4* noise) {
-  Floats4 rows[4];
-  for (int j = 0; j < 4; ++j) std::memcpy(&rows[j], &p[j].x_m, sizeof rows[j]);
-  const Floats4 xy01 = __builtin_shuffle(rows[0], rows[1], Ints4{0, 4, 1, 5});
-  const Floats4 zn01 = __builtin_shuffle(rows[0], rows[1], Ints4{2, 6, 3, 7});
-  const Floats4 xy23 = __builtin_shuffle(rows[2], rows[3], Ints4{0, 4, 1, 5});
-  const Floats4 zn23 = __builtin_shuffle(rows[2], rows[3], Ints4{2, 6, 3, 7});
-  *x = __builtin_shuffle(xy01, xy23, Ints4{0, 1, 4, 5});
-  *y = __builtin_shuffle(xy01, xy23, Ints4{2, 3, 6, 7});
-  *z = __builtin_shuffle(zn01, zn23, Ints4{0, 1, 4, 5});
-  *noise = __builtin_shuffle(zn01, zn23, Ints4{2, 3, 6, 7});
-}
 
 // Four pixels' flags and wall distances. Lanes are all-ones where a
 // comparison holds, so a flag is its lane masked with the flag's bit.

@@ -1,6 +1,7 @@
 #include "estimator/handrail_pose.hpp"
 
 #include "estimator/moments.hpp"
+#include "four_lanes.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -41,6 +42,54 @@ void inlier_extent(const OrganizedCloud& cloud, const IndexList& inliers,
   }
   *t_min = lo;
   *t_max = hi;
+}
+
+// The gap pixels along [t_min, t_max] and within band_m across the line,
+// into ws.band in the gap list's order. Four at a time: the points gathered
+// by a transpose, both coordinates computed with the same operations in
+// the same order as LinearForm's (so the same floats), the lanes in the
+// band appended without a branch per pixel. This walk over the gap list
+// runs for every line that reaches the centre line (more pixels than the
+// cross test walks in a frame).
+void collect_band(const OrganizedCloud& cloud, const LinearForm& along, const LinearForm& side,
+                  float t_min, float t_max, float band_m, Workspace& ws) {
+  using four_lanes::Floats4;
+  using four_lanes::Ints4;
+  const std::int32_t* gap = ws.gap.begin();
+  const std::size_t n = ws.gap.size();
+  const float* distance_m = ws.signed_distance_m.get();
+  std::int32_t* band = ws.band.begin();
+  std::size_t count = 0;
+  std::size_t k = 0;
+  // Each block writes four slots from `count`, at most k: within the list's
+  // capacity, which is the gap list's (a slot per pixel).
+  for (; k + 4 <= n; k += 4) {
+    const CloudPoint* const p[4] = {cloud.points + gap[k], cloud.points + gap[k + 1],
+                                    cloud.points + gap[k + 2], cloud.points + gap[k + 3]};
+    Floats4 x, y, z, noise;
+    four_lanes::load_four_points(p, &x, &y, &z, &noise);
+    const Floats4 s = {distance_m[gap[k]], distance_m[gap[k + 1]], distance_m[gap[k + 2]],
+                       distance_m[gap[k + 3]]};
+    const Floats4 t = along.ex * x + along.ey * y + along.ez * z - s * along.en - along.e0;
+    const Floats4 u = side.ex * x + side.ey * y + side.ez * z - s * side.en - side.e0;
+    const Floats4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    const Floats4 u_abs = u < zero ? -u : u;
+    const Ints4 in_band = (t >= t_min) & (t <= t_max) & (u_abs <= band_m);
+    const std::uint32_t mask = four_lanes::lane_mask(in_band);
+    for (int j = 0; j < 4; ++j) {
+      band[count] = gap[k + j];
+      count += (mask >> j) & 1u;
+    }
+  }
+  for (; k < n; ++k) {
+    const std::int32_t i = gap[k];
+    const CloudPoint& p = cloud.points[i];
+    const float s = distance_m[i];
+    const float t = along(p, s);
+    band[count] = i;
+    count += t >= t_min && t <= t_max && std::fabs(side(p, s)) <= band_m;
+  }
+  ws.band.set_size(count);
 }
 
 }  // namespace
@@ -126,16 +175,8 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   // coordinates along and across the line, after projection onto the wall,
   // are linear in the point and its wall distance s.
   const float band_m = 0.5f * cfg.handrail.bar_width_m + 0.02f;
-  {
-    const LinearForm along(axis, normal, origin), side(across, normal, origin);
-    ws.band.clear();
-    for (std::int32_t i : ws.gap) {
-      const CloudPoint& p = cloud.points[i];
-      const float s = ws.signed_distance_m[i];
-      const float t = along(p, s);
-      if (t >= t_min && t <= t_max && std::fabs(side(p, s)) <= band_m) ws.band.push(i);
-    }
-  }
+  collect_band(cloud, LinearForm(axis, normal, origin), LinearForm(across, normal, origin), t_min,
+               t_max, band_m, ws);
   const float front = front_face_height(cfg, ws, ws.band.size());
   if (!std::isfinite(front)) return false;
 
