@@ -1,11 +1,13 @@
 #include "estimator/plane_estimation.hpp"
 
 #include "estimator/moments.hpp"
+#include "four_lanes.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace estimator {
 namespace {
@@ -138,14 +140,38 @@ constexpr int kSharpBins = 256;
 
 std::uint64_t normal_sharpness(const Eigen::Vector3f& n, const float* x, const float* y,
                                const float* z, std::size_t m) {
-  std::uint32_t count[kSharpBins] = {};
-  const float base = n.x() * x[0] + n.y() * y[0] + n.z() * z[0] - 0.5f * kSharpBins * kSharpBinM;
-  for (std::size_t k = 0; k < m; ++k) {
-    const float bin = (n.x() * x[k] + n.y() * y[k] + n.z() * z[k] - base) / kSharpBinM;
-    if (bin >= 0.0f && bin < static_cast<float>(kSharpBins)) ++count[static_cast<int>(bin)];
+  using four_lanes::Floats4;
+  using four_lanes::Ints4;
+  // Four histograms, one per lane, added at the end: the points of a face
+  // fall into the same few bins, and one histogram's increments would wait
+  // on each other. Four points at a time, with the scalar expression's
+  // operations in its order (the same bins).
+  std::uint32_t count[4][kSharpBins] = {};
+  const float nx = n.x(), ny = n.y(), nz = n.z();
+  const float base = nx * x[0] + ny * y[0] + nz * z[0] - 0.5f * kSharpBins * kSharpBinM;
+  std::size_t k = 0;
+  for (; k + 4 <= m; k += 4) {
+    Floats4 xs, ys, zs;
+    std::memcpy(&xs, x + k, sizeof xs);
+    std::memcpy(&ys, y + k, sizeof ys);
+    std::memcpy(&zs, z + k, sizeof zs);
+    const Floats4 bin = (nx * xs + ny * ys + nz * zs - base) / kSharpBinM;
+    // Lanes outside the histogram (or NaN) add 0 to bin 0, and only
+    // values in range are converted.
+    const Ints4 inside = (bin >= 0.0f) & (bin < static_cast<float>(kSharpBins));
+    const Floats4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    const Ints4 index = __builtin_convertvector(inside ? bin : zero, Ints4);
+    for (int j = 0; j < 4; ++j) count[j][index[j]] += static_cast<std::uint32_t>(inside[j]) & 1u;
+  }
+  for (; k < m; ++k) {
+    const float bin = (nx * x[k] + ny * y[k] + nz * z[k] - base) / kSharpBinM;
+    if (bin >= 0.0f && bin < static_cast<float>(kSharpBins)) ++count[0][static_cast<int>(bin)];
   }
   std::uint64_t sum = 0;
-  for (int b = 0; b < kSharpBins; ++b) sum += static_cast<std::uint64_t>(count[b]) * count[b];
+  for (int b = 0; b < kSharpBins; ++b) {
+    const std::uint64_t c = count[0][b] + count[1][b] + count[2][b] + count[3][b];
+    sum += c * c;
+  }
   return sum;
 }
 
