@@ -1,5 +1,7 @@
 #include "estimator/handrail_filters.hpp"
 
+#include "four_lanes.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -31,11 +33,6 @@ class AscendingPixels {
   int row_ = 0;
   std::int32_t row_start_ = 0;
 };
-
-// Nearest integer; inline (std::lround is a library call on the hot path).
-int round_to_int(float x) {
-  return static_cast<int>(x < 0.0f ? x - 0.5f : x + 0.5f);
-}
 
 // A pixel's noise, bounded to [0, 2 cm]; NaN counts as 0 (comparisons with
 // NaN are false), so no bad value can open the windows.
@@ -383,16 +380,23 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
   ws.cross.clear();
   AscendingPixels pixel_of(cloud);
   const float* inverse_depth = ws.inverse_depth_per_m.get();
+  const four_lanes::Floats4 focal_times_probe_m = {fx_plus, fx_minus, fy_plus, fy_minus};
   for (std::int32_t i : ws.gap) {
     const Pixel q = pixel_of(i);
-    const float inv_z = inverse_depth[i];
+    // The four probes' offsets in pixels, rounded to the nearest integer
+    // (half away from zero), in one vector.
+    const four_lanes::Floats4 offsets = focal_times_probe_m * inverse_depth[i];
+    const four_lanes::Floats4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    const four_lanes::Floats4 half = {0.5f, 0.5f, 0.5f, 0.5f};
+    const four_lanes::Ints4 offset_px =
+        __builtin_convertvector(offsets + (offsets < zero ? -half : half), four_lanes::Ints4);
     // The probes first, each a lookup; a run's width may need a walk down
     // a column.
-    const bool x_ok = walls.along_row(q.row, q.col, 1, round_to_int(fx_plus * inv_z)) &&
-                      walls.along_row(q.row, q.col, -1, round_to_int(fx_minus * inv_z)) &&
+    const bool x_ok = walls.along_row(q.row, q.col, 1, offset_px[0]) &&
+                      walls.along_row(q.row, q.col, -1, offset_px[1]) &&
                       plausible(runs.row(q).width_m);
-    bool y_ok = walls.along_column(q.row, q.col, 1, round_to_int(fy_plus * inv_z)) &&
-                walls.along_column(q.row, q.col, -1, round_to_int(fy_minus * inv_z));
+    bool y_ok = walls.along_column(q.row, q.col, 1, offset_px[2]) &&
+                walls.along_column(q.row, q.col, -1, offset_px[3]);
     if (y_ok) {
       float column_width = 0.0f, column_peak = 0.0f;
       runs.column(q, &column_width, &column_peak);
