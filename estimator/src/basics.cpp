@@ -211,7 +211,7 @@ Workspace::Workspace(std::size_t n)
       column_run_width_m(new float[kMaxWidth]),
       column_run_peak_m(new float[kMaxWidth]),
       column_run_base_m(new float[kMaxWidth]),
-      column_wall_pair_next(new std::int16_t[n]),
+      column_wall_pair_rows_down(new std::uint8_t[n]),
       score_x_m(new float[kMaxScoreSamples]),
       score_y_m(new float[kMaxScoreSamples]),
       score_z_m(new float[kMaxScoreSamples]),
@@ -220,8 +220,7 @@ Workspace::Workspace(std::size_t n)
       refit_z_m(new float[kMaxRefitSamples]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 8 + sizeof(std::uint8_t) + sizeof(std::int32_t) * 7 +
-                       sizeof(std::int16_t)) +
+  return max_pixels * (sizeof(float) * 8 + sizeof(std::uint8_t) * 2 + sizeof(std::int32_t) * 7) +
          3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
          sizeof(std::int32_t) * kMaxRefitSamples + 5 * 4 * kMaxWidth;
 }

@@ -59,16 +59,17 @@ float clamp_noise(float noise_m) {
 //
 // Along a row the wall pixels are a bitset (one bit per pixel, from the
 // flags' wall and gap bits eight pixels at a time), and so are the pairs' first
-// pixels: a probe tests a few words. Down the columns every pixel holds the
-// first row at or below it that starts a pair, filled for the whole image a
-// row at a time from the bottom up, eight columns per vector operation.
+// pixels: a probe tests a few words. Down the columns every pixel holds how
+// many rows below it the first pair starts (one byte, saturated), filled
+// for the whole image a row at a time from the bottom up, sixteen columns
+// per vector operation.
 class WallPairs {
  public:
   WallPairs(const OrganizedCloud& cloud, Workspace& ws)
       : flags_(ws.flags.get()),
         width_(static_cast<int>(cloud.width)),
         height_(static_cast<int>(cloud.height)),
-        column_next_(ws.column_wall_pair_next.get()) {}
+        rows_down_(ws.column_wall_pair_rows_down.get()) {}
 
   // The probe from pixel (row, col) along its row, toward higher columns
   // (sign 1) or lower (-1), offset_px pixels out.
@@ -96,23 +97,36 @@ class WallPairs {
   bool along_column(int row, int col, int sign, int offset_px) {
     if (!columns_filled_) fill_columns();
     const int near = (offset_px + 1) / 2;
-    const std::int16_t* next = column_next_ + col;
     if (sign > 0) {
       const int lo = row + near, hi = std::min(row + offset_px - 1, height_ - 1);
-      return lo <= hi && next[lo * width_] <= hi;
+      return lo <= hi && column_pair_within(col, lo, hi);
     }
     const int lo = row - offset_px, hi = row - near;
     const int first = std::max(lo + 1, 0);
     if (first > hi) return false;
     if (first == 0 && clear_wall(flags_[col])) return true;
     const int from = std::max(first, 1) - 1;
-    return from <= hi - 1 && next[from * width_] <= hi - 1;
+    return from <= hi - 1 && column_pair_within(col, from, hi - 1);
   }
 
  private:
   static constexpr int kWords = static_cast<int>(Workspace::kMaxWidth / 64) + 1;
   static_assert(kFlagWall == 1u << 7 && kFlagGap == 1u << 2,
                 "the gap bit shifts onto the wall bit");
+
+  // The most rows_down_ holds: no pair starts within kFar - 1 rows below.
+  static constexpr int kFar = 255;
+
+  // Whether a pair starts in column col at a row in [lo, hi] (lo <= hi):
+  // one lookup, unless a probe spans more rows than a byte counts (bounded
+  // by the image's height / kFar steps).
+  bool column_pair_within(int col, int lo, int hi) const {
+    for (int r = lo; r <= hi; r += kFar) {
+      const int rows = rows_down_[r * width_ + col];
+      if (rows < kFar) return r + rows <= hi;
+    }
+    return false;
+  }
 
   // On the wall and not in the gap window widened by the pixel's noise.
   static bool clear_wall(std::uint8_t f) { return (f & kFlagWall) && !(f & kFlagGap); }
@@ -159,46 +173,47 @@ class WallPairs {
     row_ = row;
   }
 
-  // next[r][c]: the first row r' >= r where pixels (r', c) and (r' + 1, c)
-  // are both wall, the last row pairing with what lies below the image
-  // (height_ if none).
+  // rows_down_[r][c]: how many rows below r (0: r itself) the first row
+  // r' >= r starts where pixels (r', c) and (r' + 1, c) are both wall, the
+  // last row pairing with what lies below the image; height_ - r if none,
+  // and at most kFar.
   void fill_columns() {
-    typedef std::int16_t Shorts8 __attribute__((vector_size(16)));
-    typedef std::uint8_t Bytes8 __attribute__((vector_size(8)));
+    typedef std::uint8_t Bytes16 __attribute__((vector_size(16)));
+    typedef std::int8_t SignedBytes16 __attribute__((vector_size(16)));
     const int last = height_ - 1;
-    std::int16_t* bottom = column_next_ + static_cast<std::size_t>(last) * width_;
+    std::uint8_t* bottom = rows_down_ + static_cast<std::size_t>(last) * width_;
     const std::uint8_t* f = flags_ + static_cast<std::size_t>(last) * width_;
-    for (int c = 0; c < width_; ++c) {
-      bottom[c] = static_cast<std::int16_t>(clear_wall(f[c]) ? last : height_);
-    }
+    for (int c = 0; c < width_; ++c) bottom[c] = clear_wall(f[c]) ? 0 : 1;
     for (int r = last - 1; r >= 0; --r) {
-      std::int16_t* next = column_next_ + static_cast<std::size_t>(r) * width_;
-      const std::int16_t* below = next + width_;
+      std::uint8_t* down = rows_down_ + static_cast<std::size_t>(r) * width_;
+      const std::uint8_t* below = down + width_;
       const std::uint8_t* here = flags_ + static_cast<std::size_t>(r) * width_;
       const std::uint8_t* under = here + width_;
-      const std::int16_t row_index = static_cast<std::int16_t>(r);
       int c = 0;
-      for (; c + 8 <= width_; c += 8) {
-        // The eight bytes' test as one 64-bit word: a vector of bytes has
-        // no shift on SSE2, and the compiler would shift them one by one.
-        // Shifted by 5, each byte's gap bit lands on its own wall bit.
-        std::uint64_t a, b;
-        Shorts8 down;
-        std::memcpy(&a, here + c, sizeof a);
-        std::memcpy(&b, under + c, sizeof b);
-        std::memcpy(&down, below + c, sizeof down);
-        constexpr std::int16_t kWallBit = kFlagWall;
-        const std::uint64_t ab_word = a & b & ~((a | b) << 5);
-        Bytes8 ab;
-        std::memcpy(&ab, &ab_word, sizeof ab);
-        const Shorts8 both = __builtin_convertvector(ab, Shorts8) & kWallBit;
-        const Shorts8 zero = {0, 0, 0, 0, 0, 0, 0, 0};
-        const Shorts8 here_index = zero + row_index;
-        const Shorts8 out = both != zero ? here_index : down;
-        std::memcpy(next + c, &out, sizeof out);
+      for (; c + 16 <= width_; c += 16) {
+        // The pair test on 64-bit words, eight bytes each: a vector of
+        // bytes has no shift on SSE2, and the compiler would shift them
+        // one by one. Shifted by 5, each byte's gap bit lands on its own
+        // wall bit (bit 7, the byte's sign).
+        std::uint64_t a[2], b[2], pair_words[2];
+        std::memcpy(a, here + c, sizeof a);
+        std::memcpy(b, under + c, sizeof b);
+        for (int h = 0; h < 2; ++h) pair_words[h] = a[h] & b[h] & ~((a[h] | b[h]) << 5);
+        SignedBytes16 pairs;
+        Bytes16 rows_below;
+        std::memcpy(&pairs, pair_words, sizeof pairs);
+        std::memcpy(&rows_below, below + c, sizeof rows_below);
+        const SignedBytes16 zero = {};
+        const Bytes16 starts_here = reinterpret_cast<Bytes16>(pairs < zero);
+        // One row further than below's, held at kFar.
+        const Bytes16 not_far = reinterpret_cast<Bytes16>(rows_below != kFar);
+        const Bytes16 rows = (rows_below - not_far) & ~starts_here;
+        std::memcpy(down + c, &rows, sizeof rows);
       }
       for (; c < width_; ++c) {
-        next[c] = clear_wall(here[c]) && clear_wall(under[c]) ? row_index : below[c];
+        const int further = below[c] < kFar ? below[c] + 1 : kFar;
+        down[c] =
+            clear_wall(here[c]) && clear_wall(under[c]) ? 0 : static_cast<std::uint8_t>(further);
       }
     }
     columns_filled_ = true;
@@ -206,7 +221,7 @@ class WallPairs {
 
   const std::uint8_t* flags_;
   int width_, height_;
-  std::int16_t* column_next_;
+  std::uint8_t* rows_down_;
   std::uint64_t row_walls_[kWords];
   std::uint64_t row_pairs_[kWords];
   int row_ = -1;

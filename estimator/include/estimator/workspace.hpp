@@ -90,9 +90,9 @@ struct Workspace {
   std::unique_ptr<float[]> column_run_peak_m;
   std::unique_ptr<float[]> column_run_base_m;
   // The cross test's probes (handrail_filters.cpp, WallPairs): per pixel,
-  // the first row at or below it in its column where two wall pixels
-  // stand one above the other.
-  std::unique_ptr<std::int16_t[]> column_wall_pair_next;
+  // how many rows below it (at most 255) the first row in its column
+  // starts where two wall pixels stand one above the other.
+  std::unique_ptr<std::uint8_t[]> column_wall_pair_rows_down;
   // Contiguous copies of the RANSAC subsamples ((x, y, z), or (u, v) in the
   // wall plane), so that scoring a hypothesis streams through memory
   // instead of hopping through the cloud.
