@@ -94,6 +94,119 @@ void test_gap_pass_judges_each_pixel_including_the_tail(void**) {
   assert_int_equal(ws.flags[7], kFlagValid);
 }
 
+// The pass against a plain per-pixel statement of eq. 1 and the flags, on
+// a frame of random heights, noise and dropouts sized so that the pass's
+// blocks of sixteen, its blocks of four and its scalar tail all run (37 x 11
+// pixels: 25 blocks of sixteen, one of four, three more): every flag,
+// distance, widening and inverse depth, the counts, and the gap list in
+// pixel order; then the shifted pass, with the plane kept in its list and
+// left out of it.
+void test_gap_pass_matches_a_scalar_reference(void**) {
+  const DetectorConfig cfg = test_config();
+  const float lo = gap_min_m(cfg), hi = gap_max_m(cfg);
+  Plane wall;
+  wall.normal = Eigen::Vector3f(0.1f, -0.2f, -1.0f).normalized();
+  wall.d = 0.6f;
+  const int width = 37, height = 11;
+  std::vector<CloudPoint> pts(static_cast<std::size_t>(width * height));
+  std::uint32_t state = 12345u;
+  auto uniform = [&state](float a, float b) {
+    state = state * 1664525u + 1013904223u;
+    return a + (b - a) * static_cast<float>(state >> 8) / 16777216.0f;
+  };
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    // A point at height h over the wall along the camera's ray through
+    // (x, y) = (u, v) z.
+    const float u = uniform(-0.4f, 0.4f), v = uniform(-0.3f, 0.3f);
+    const float h = uniform(-0.03f, 0.12f);
+    const Eigen::Vector3f ray(u, v, 1.0f);
+    const float z = (h - wall.d) / wall.normal.dot(ray);
+    pts[i] = CloudPoint{u * z, v * z, z, uniform(-0.005f, 0.03f), 100, 255};
+    const float dice = uniform(0.0f, 1.0f);
+    if (dice < 0.05f) pts[i].confidence = 0;
+    if (dice > 0.97f) pts[i].noise_m = std::nanf("");
+    if (dice > 0.95f && dice < 0.96f) pts[i].z_m = std::nanf("");
+  }
+  OrganizedCloud cloud;
+  cloud.width = width;
+  cloud.height = height;
+  cloud.points = pts.data();
+  Workspace ws(cloud.size());
+  std::uint32_t valid = 0;
+  const std::uint32_t plane_inliers = gap_distance_test(cloud, cfg, wall, ws, &valid);
+
+  struct Expected {
+    float s_m = -INFINITY;  // the pass's distance: -infinity where invalid
+    float widen_m = 0.0f;
+    std::uint8_t flags = 0;
+  };
+  auto classify = [&](float s0_m, bool is_valid, float widen_m, float offset_m) {
+    Expected e;
+    if (!is_valid) return e;
+    e.s_m = s0_m - offset_m;
+    e.widen_m = widen_m;
+    e.flags = kFlagValid;
+    if (std::fabs(s0_m) < cfg.plane_inlier_m) e.flags |= kFlagPlane;
+    if (e.s_m >= lo - widen_m && e.s_m <= hi + widen_m) e.flags |= kFlagGap;
+    if (e.s_m < cfg.wall_tolerance_m) e.flags |= kFlagWall;
+    return e;
+  };
+  std::vector<Expected> plain(pts.size());
+  std::uint32_t want_valid = 0, want_plane = 0;
+  std::vector<std::int32_t> want_gap;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const CloudPoint& p = pts[i];
+    const float s =
+        wall.normal.x() * p.x_m + wall.normal.y() * p.y_m + wall.normal.z() * p.z_m + wall.d;
+    const bool is_valid =
+        p.confidence != 0 && p.z_m >= cfg.min_range_m && p.z_m <= cfg.max_range_m && !std::isnan(s);
+    const float noise = p.noise_m > 0.0f ? std::fmin(p.noise_m, 0.02f) : 0.0f;
+    plain[i] = classify(s, is_valid, 2.0f * noise, 0.0f);
+    want_valid += is_valid;
+    want_plane += (plain[i].flags & kFlagPlane) != 0;
+    if (plain[i].flags & kFlagGap) want_gap.push_back(static_cast<std::int32_t>(i));
+    assert_int_equal(ws.flags[i], plain[i].flags);
+    if (!is_valid) {
+      assert_true(std::isinf(ws.signed_distance_m[i]) && ws.signed_distance_m[i] < 0.0f);
+      continue;
+    }
+    assert_float_equal(ws.signed_distance_m[i], s, 0.0f);
+    assert_float_equal(ws.gap_widen_m[i], 2.0f * noise, 0.0f);
+    assert_float_equal(ws.inverse_depth_per_m[i], 1.0f / p.z_m, 0.0f);
+  }
+  assert_int_equal(valid, want_valid);
+  assert_int_equal(plane_inliers, want_plane);
+  assert_true(want_gap.size() > 50 && want_plane > 20);  // every kind is there
+  assert_int_equal(ws.gap.size(), want_gap.size());
+  for (std::size_t k = 0; k < want_gap.size(); ++k) assert_int_equal(ws.gap[k], want_gap[k]);
+
+  keep_plane_pass(cloud, ws);
+  // A search 4 cm below the plane leaves the plane's pixels out of its list,
+  // one 8 cm below keeps them (its window reaches down to the plane's band).
+  assert_true(plane_left_out_of_gap_list(cfg, -0.04f));
+  assert_false(plane_left_out_of_gap_list(cfg, -0.08f));
+  for (const float offset : {0.013f, -0.04f, -0.08f}) {
+    const bool plane_out = plane_left_out_of_gap_list(cfg, offset);
+    gap_distance_shifted(cloud, cfg, offset, ws, &valid);
+    assert_int_equal(valid, want_valid);
+    std::vector<std::int32_t> listed;
+    std::size_t plane_listed = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Expected e = classify(plain[i].s_m, plain[i].flags != 0, plain[i].widen_m, offset);
+      assert_int_equal(ws.flags[i], e.flags);
+      if (e.flags == 0) continue;
+      assert_float_equal(ws.signed_distance_m[i], e.s_m, 0.0f);
+      if ((e.flags & kFlagGap) && !(plane_out && (e.flags & kFlagPlane))) {
+        listed.push_back(static_cast<std::int32_t>(i));
+        plane_listed += (e.flags & kFlagPlane) != 0;
+      }
+    }
+    assert_int_equal(ws.gap.size(), listed.size());
+    for (std::size_t k = 0; k < listed.size(); ++k) assert_int_equal(ws.gap[k], listed[k]);
+    if (!plane_out) assert_true(offset > 0.0f || plane_listed > 10);
+  }
+}
+
 void test_pixel_scale_recovers_projection(void**) {
   SyntheticScene s;
   std::vector<CloudPoint> pts;
@@ -353,6 +466,7 @@ void test_config_validation_names_the_field(void**) {
 int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_gap_pass_judges_each_pixel_including_the_tail),
+      cmocka_unit_test(test_gap_pass_matches_a_scalar_reference),
       cmocka_unit_test(test_pixel_scale_recovers_projection),
       cmocka_unit_test(test_filters_keep_the_bar_and_drop_a_thin_cable),
       cmocka_unit_test(test_side_width_front_window_allows_deeper_faces_only_when_asked),
