@@ -337,6 +337,61 @@ void test_cross_probe_finds_the_wall_past_a_taller_face(void**) {
   assert_false(speckled & kFlagCrossX);
 }
 
+// The column probes count rows in a byte, and a probe can span more rows
+// than a byte holds in a tall frame seen through a long lens. A 1,500-row
+// strip, 4,000 px focal length: a bar 270 rows tall, 8 cm in front of the
+// wall; below it a shelf off the wall, then the wall again from row
+// wall_from. The downward probe of a pixel near the bar's top searches
+// rows 327 to 652 below it (over 255 rows). The wall 300 rows into that
+// window is found, 100 rows in too; the wall 15 rows past its end is not
+// (a saturated count taken at its word would say it is).
+std::uint8_t cross_flags_in_tall_frame(int wall_from) {
+  const int width = 8, height = 1500, bar_top = 700, bar_rows = 270;
+  const float focal_px = 4000.0f, wall_m = 0.6f;
+  const DetectorConfig cfg = test_config();
+  const float bar_s_m = cfg.handrail.bar_center_offset_m, shelf_s_m = 0.03f;
+  std::vector<CloudPoint> pts(static_cast<std::size_t>(width * height));
+  for (int r = 0; r < height; ++r) {
+    float s_m = 0.0f;
+    if (r >= bar_top && r < bar_top + bar_rows) s_m = bar_s_m;
+    if (r >= bar_top + bar_rows && r < wall_from) s_m = shelf_s_m;
+    const float z = wall_m - s_m;
+    for (int c = 0; c < width; ++c) {
+      pts[static_cast<std::size_t>(r * width + c)] = CloudPoint{
+          (c - 3.5f) / focal_px * z, (r - 0.5f * height) / focal_px * z, z, 0.001f, 100, 255};
+    }
+  }
+  OrganizedCloud cloud;
+  cloud.width = width;
+  cloud.height = height;
+  cloud.points = pts.data();
+  Plane wall;
+  wall.normal = Eigen::Vector3f(0.0f, 0.0f, -1.0f);
+  wall.d = wall_m;
+  PixelScale scale;
+  scale.ok = true;
+  scale.fx_px = scale.fy_px = focal_px;
+  scale.cx_px = 3.5f;
+  scale.cy_px = 0.5f * height;
+  // The probe's reach at the bar (eq. 2 on a wall facing the camera).
+  const float offset_px = focal_px * cross_distance_m(cfg) / (wall_m - bar_s_m);
+  assert_true(offset_px > 640.0f && offset_px < 665.0f);
+  Workspace ws(cloud.size());
+  std::uint32_t valid = 0;
+  gap_distance_test(cloud, cfg, wall, ws, &valid);
+  cross_point_test(cloud, cfg, wall, scale, ws);
+  const std::uint8_t flags = ws.flags[static_cast<std::size_t>((bar_top + 10) * width + 3)];
+  assert_true(flags & kFlagGap);
+  return flags;
+}
+
+void test_cross_probe_reaches_past_a_bytes_count(void**) {
+  const int window_from = 710 + 327, window_to = 710 + 652;
+  assert_true(cross_flags_in_tall_frame(window_from + 100) & kFlagCrossY);
+  assert_true(cross_flags_in_tall_frame(window_from + 300) & kFlagCrossY);
+  assert_false(cross_flags_in_tall_frame(window_to + 15) & kFlagCrossY);
+}
+
 void test_candidates_cluster_and_select(void**) {
   SyntheticScene s = bar_scene();
   std::vector<CloudPoint> pts;
@@ -471,6 +526,7 @@ int main() {
       cmocka_unit_test(test_filters_keep_the_bar_and_drop_a_thin_cable),
       cmocka_unit_test(test_side_width_front_window_allows_deeper_faces_only_when_asked),
       cmocka_unit_test(test_cross_probe_finds_the_wall_past_a_taller_face),
+      cmocka_unit_test(test_cross_probe_reaches_past_a_bytes_count),
       cmocka_unit_test(test_candidates_cluster_and_select),
       cmocka_unit_test(test_cluster_splits_at_gaps),
       cmocka_unit_test(test_handrail_frame_is_eq5),
