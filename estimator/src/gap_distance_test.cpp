@@ -152,9 +152,8 @@ constexpr LaneList kSetLanes[16] = {
 // Invalid pixels are scattered over a ToF frame, so the gap list is built
 // without a branch per pixel: slots are written whether or not the pixel
 // belongs, and the count advances only by those that do (the list has a
-// slot per pixel). The outputs are
-// locals: byte stores through a member could alias anything and force
-// reloads.
+// slot per pixel). The outputs are locals: byte stores through a member
+// could alias anything and force reloads.
 template <class Block, class Tail>
 std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pixels, Block block,
                            Tail tail, bool plane_left_out) {
