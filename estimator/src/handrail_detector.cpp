@@ -81,8 +81,9 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   } else {
     // Seeded from the frame id: a frame always gives the same answer.
     rng_.reseed(frame_seed(cfg_.seed, cloud.frame_id));
-    // No earlier frame's surfaces in the diagnostics.
+    // No earlier frame's surfaces or lines in the diagnostics.
     mounts_ = MountHypotheses{};
+    trace_.clear();
     dominant_ = Plane{};
     // Emptiness is judged on the lattice sample: a frame with fewer than
     // three usable pixels in it has no wall to find.
@@ -245,6 +246,39 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   return LineVerdict::kAccepted;
 }
 
+void HandrailDetector::trace_line(LineVerdict verdict, const IndexList& inliers,
+                                  const CenterLine& line, const bool ends[2],
+                                  const float end_t[2]) {
+  LineTraceEntry e;
+  e.search = search_index_;
+  e.search_mount_m = search_mount_m_;
+  e.verdict = verdict;
+  e.inliers = static_cast<std::uint32_t>(inliers.size());
+  // How far each line got through verify_candidate's steps, by its verdict.
+  e.has_center_line =
+      verdict != LineVerdict::kTooFewPoints && verdict != LineVerdict::kNoCenterLine;
+  e.seated = e.has_center_line && verdict != LineVerdict::kCrossesBar &&
+             verdict != LineVerdict::kWrongHeight;
+  e.ends_walked = verdict == LineVerdict::kAccepted || verdict == LineVerdict::kRampEnd ||
+                  verdict == LineVerdict::kTooFar || verdict == LineVerdict::kBeamLength ||
+                  verdict == LineVerdict::kTooShort || verdict == LineVerdict::kTooLong;
+  if (e.has_center_line) {
+    // The walked ends bound what is visible; before the walk, the inliers.
+    const float t0 = e.ends_walked ? end_t[0] : line.t_min_m;
+    const float t1 = e.ends_walked ? end_t[1] : line.t_max_m;
+    e.middle_cam = line.point + 0.5f * (t0 + t1) * line.axis;
+    e.axis_cam = line.axis;
+    e.visible_length_m = t1 - t0;
+    e.front_height_m = line.front_height_m;
+    e.mount_m = e.seated ? line.mount_offset_m : search_mount_m_;
+  }
+  if (e.ends_walked) {
+    e.end_seen[0] = ends[0];
+    e.end_seen[1] = ends[1];
+  }
+  trace_.push(e);
+}
+
 void HandrailDetector::remove_rejected_line(LineVerdict verdict, const LineModel& refined,
                                             const CenterLine& line, IndexList& active) {
   remove_line_points(wall_, ws_, refined, cfg_.line_inlier_m, INFINITY, active);
@@ -351,6 +385,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
         slot != kDominant && slot + mounts_.front_peak_count >= mounts_.count;
     if (front_peak_mount && best.status == DetectStatus::kFound) continue;
     HandrailDetection attempt = *out;
+    search_index_ = static_cast<std::uint8_t>(n);
     if (slot == kDominant) {
       strict_mount_ = true;
       search_mount(cloud, plane.plane, kDominant, 0.0f, !dominant_pass_fresh, start_us, &attempt);
@@ -394,8 +429,11 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     if (cfg_.workspace_shows_result && best_slot != last_slot) {
       strict_mount_ = best_slot == kDominant;
       HandrailDetection again = *out;
+      const bool trace_on = trace_on_;
+      trace_on_ = false;  // the same lines again: traced once
       search_mount(cloud, plane.plane, best_slot,
                    strict_mount_ ? 0.0f : mounts_.offset_m[best_slot], true, start_us, &again);
+      trace_on_ = trace_on;
     }
     *out = best;
   } else {
@@ -467,6 +505,7 @@ void HandrailDetector::search_on_mount(const OrganizedCloud& cloud, std::int64_t
       LineModel refined;
       const LineVerdict verdict = verify_candidate(cloud, candidate, active, &refined, ws_.line[k],
                                                    &lines[k], ends[k], end_t[k]);
+      if (trace_on_) trace_line(verdict, ws_.line[k], lines[k], ends[k], end_t[k]);
       if (attempt == 0 && out->counts.first_rejection == LineVerdict::kAccepted) {
         out->counts.first_rejection = verdict;
       }

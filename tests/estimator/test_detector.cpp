@@ -86,6 +86,60 @@ void test_lower_pipe_beside_the_bar_does_not_hide_it(void**) {
   }
 }
 
+// The line trace (hrdetect --lines) names every line tested, in order, with
+// its verdict: in the scene above, the pipe refused for its height (when a
+// search tests it) and the bar accepted, where the detection says. It is
+// empty when off, and starts afresh each frame.
+void test_line_trace_names_every_tested_line(void**) {
+  testing_support::SyntheticScene s = bar_scene(0.001);
+  s.cylinders.push_back(
+      testing_support::vertical_bar(kWall, kOffset + 0.0175 - 0.01 - 0.02, 0.5, 0.02, 0.08));
+  std::vector<CloudPoint> pts;
+  DetectorConfig cfg = synthetic_config();
+  cfg.line_attempts = 2;
+  HandrailDetector quiet(cfg);
+  assert_int_equal(static_cast<int>(quiet.detect(testing_support::render(s, &pts, 0)).status),
+                   static_cast<int>(DetectStatus::kFound));
+  assert_int_equal(quiet.last_line_trace().count, 0);
+
+  HandrailDetector det(cfg);
+  det.set_line_trace(true);
+  int pipe_refusals = 0;
+  for (std::uint64_t id = 0; id < 10; ++id) {
+    const HandrailDetection d = det.detect(testing_support::render(s, &pts, id));
+    assert_int_equal(static_cast<int>(d.status), static_cast<int>(DetectStatus::kFound));
+    const LineTrace& trace = det.last_line_trace();
+    assert_true(trace.count >= 1);
+    assert_int_equal(trace.dropped, 0);
+    // Several mount searches may accept a line; the detection is one of
+    // them, the best (better_find).
+    int the_detection = 0;
+    for (std::uint32_t k = 0; k < trace.count; ++k) {
+      const LineTraceEntry& e = trace.entries[k];
+      if (e.verdict == LineVerdict::kAccepted) {
+        assert_true(e.has_center_line && e.seated && e.ends_walked);
+        if (e.inliers == d.inliers && std::fabs(e.middle_cam.x() - d.p_cam_center.x()) < 1e-4f &&
+            std::fabs(e.middle_cam.z() - d.p_cam_center.z()) < 1e-4f) {
+          ++the_detection;
+          assert_true(e.end_seen[0] && e.end_seen[1]);
+          assert_near(e.visible_length_m, d.visible_length_m, 1e-4);
+        }
+      } else if (e.verdict == LineVerdict::kWrongHeight) {
+        // The pipe, 8 cm beside the bar, its crown 1 cm below the bar's
+        // front; not seated, so its front is given above the searched wall.
+        assert_true(e.has_center_line && !e.seated && !e.ends_walked);
+        assert_near(e.middle_cam.x(), 0.08, 0.01);
+        ++pipe_refusals;
+      }
+    }
+    assert_true(the_detection >= 1);
+  }
+  assert_true(pipe_refusals >= 1);
+  // A frame with nothing to test leaves the trace empty.
+  det.detect(testing_support::render(testing_support::SyntheticScene{}, &pts, 11));
+  assert_int_equal(det.last_line_trace().count, 0);
+}
+
 void test_bar_past_the_find_range_is_refused(void**) {
   // The bar's visible middle is 0.52 m away: inside a 0.55 m find range it
   // is found, past a 0.5 m one it is refused as too far to verify.
@@ -265,6 +319,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_synthetic_bar_both_ends),
       cmocka_unit_test(test_lower_pipe_beside_the_bar_does_not_hide_it),
+      cmocka_unit_test(test_line_trace_names_every_tested_line),
       cmocka_unit_test(test_bar_past_the_find_range_is_refused),
       cmocka_unit_test(test_wall_only_reports_no_handrail),
       cmocka_unit_test(test_invalid_and_oversized_frames),

@@ -155,6 +155,25 @@ void test_mounts_are_reported_when_asked(void**) {
   assert_true(r.out.find("}}\n") != std::string::npos);
 }
 
+// --lines: every line the detector tested on the frame, in order, with its
+// verdict; on the good frame (a bar on a wall) the accepted one carries its
+// place, its mount and both ends seen. Without the option, no such array.
+void test_lines_are_reported_when_asked(void**) {
+  Result r = run({kGood});
+  assert_int_equal(r.exit_status, 0);
+  assert_true(r.out.find("\"lines\"") == std::string::npos);
+  r = run({"--lines", kGood});
+  assert_int_equal(r.exit_status, 0);
+  assert_int_equal(r.json_lines, 1);
+  expect_in(r, ",\"lines\":[{\"search\":0,\"search_mount_m\":");
+  expect_in(r, "\"verdict\":\"ACCEPTED\",\"inliers\":");
+  expect_in(r, "\"front_m\":0.0");
+  expect_in(r, "\"mount_m\":");
+  expect_in(r, "\"ends_seen\":[true,true]}");
+  assert_true(r.out.find("lines_not_kept") == std::string::npos);
+  assert_true(r.out.find("]}\n") != std::string::npos);
+}
+
 // A frame's id seeds the detector's random stream. By default the files
 // are numbered in order; --frame-ids-from-names takes the id a recorded
 // run's frame had (hrframes' frame_NNNNN.pcd), so that the flight's answer
@@ -197,6 +216,7 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_results_that_cannot_be_written_are_an_error),
       cmocka_unit_test(test_mounts_are_reported_when_asked),
       cmocka_unit_test(test_frame_ids_from_names),
+      cmocka_unit_test(test_lines_are_reported_when_asked),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

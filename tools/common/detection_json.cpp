@@ -104,6 +104,40 @@ std::string mounts_to_json(const estimator::Plane& dominant, const estimator::Mo
   return s;
 }
 
+std::string line_trace_to_json(const estimator::LineTrace& trace) {
+  std::string s = "[";
+  const std::uint32_t n = std::min(trace.count, estimator::LineTrace::kMaxEntries);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const estimator::LineTraceEntry& e = trace.entries[k];
+    char head[160];
+    std::snprintf(head, sizeof head,
+                  "%s{\"search\":%u,\"search_mount_m\":%.4f,\"verdict\":\"%s\",\"inliers\":%u",
+                  k ? "," : "", static_cast<unsigned>(e.search), e.search_mount_m,
+                  to_string(e.verdict), e.inliers);
+    s += head;
+    if (e.has_center_line) {
+      char lengths[128];
+      s += ",\"middle\":" + vec(e.middle_cam) + ",\"axis\":" + vec(e.axis_cam);
+      if (e.seated) {
+        std::snprintf(lengths, sizeof lengths,
+                      ",\"visible_length_m\":%.4f,\"front_m\":%.4f,\"mount_m\":%.4f",
+                      e.visible_length_m, e.front_height_m, e.mount_m);
+      } else {
+        std::snprintf(lengths, sizeof lengths,
+                      ",\"visible_length_m\":%.4f,\"front_above_search_m\":%.4f",
+                      e.visible_length_m, e.front_height_m);
+      }
+      s += lengths;
+    }
+    if (e.ends_walked) {
+      s += std::string(",\"ends_seen\":[") + (e.end_seen[0] ? "true" : "false") + "," +
+           (e.end_seen[1] ? "true" : "false") + "]";
+    }
+    s += "}";
+  }
+  return s + "]";
+}
+
 std::string track_to_json(const estimator::TrackedHandrail& t) {
   std::string s = "{\"event\":\"" + std::string(to_string(t.event)) + "\"";
   if (t.valid) {

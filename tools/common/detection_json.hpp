@@ -2,6 +2,7 @@
 #include <string>
 
 #include "estimator/handrail_tracker.hpp"
+#include "estimator/line_trace.hpp"
 #include "estimator/mount_surfaces.hpp"
 #include "estimator/types.hpp"
 
@@ -16,6 +17,15 @@ std::string detection_to_json(const std::string& frame, const estimator::Handrai
 // "plane_front_pixels": n}, distances from the dominant plane along its
 // normal (toward the camera), metres.
 std::string mounts_to_json(const estimator::Plane& dominant, const estimator::MountHypotheses& m);
+
+// Every line the detector tested on the last frame (hrdetect --lines): an
+// array of {"search": n, "search_mount_m": m, "verdict": "...", "inliers":
+// n} objects, in the order tested, with "middle", "axis" (camera frame)
+// and "visible_length_m" once the line had a centre line, "front_m" and
+// "mount_m" (the front's height above the mount it was seated on, that
+// mount from the dominant plane; before seating, "front_above_search_m"),
+// and "ends_seen" once its ends were walked.
+std::string line_trace_to_json(const estimator::LineTrace& trace);
 
 // The tracker's state: {"event": ..., "position": [...], "axis": [...],
 // "normal": [...], "target_position": [...]} in the world frame, or

@@ -47,6 +47,10 @@ void usage(FILE* out) {
                "  --mounts                 add a \"mount_search\" object to each line: the\n"
                "                           surfaces in view and the mounts searched, as\n"
                "                           distances from the dominant plane (tools/README.md)\n"
+               "  --lines                  add a \"lines\" array to each line: every line the\n"
+               "                           detector put to its tests, in order, with its\n"
+               "                           verdict, mount search, place and ends\n"
+               "                           (tools/README.md): why the line that won won\n"
                "  -h, --help               this text\n\n"
                "exit status: 0 when every file was read, 1 when any file could not be\n"
                "(the others are still processed), 2 for bad options.\n");
@@ -134,6 +138,7 @@ int main(int argc, char** argv) {
   std::string config_path, debug_dir, handrail = "iss";
   double gripper_deg = 0.0;
   bool gripper_given = false, sequence = false, show_mounts = false, ids_from_names = false;
+  bool show_lines = false;
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -180,6 +185,8 @@ int main(int argc, char** argv) {
       sequence = true;
     } else if (a == "--mounts") {
       show_mounts = true;
+    } else if (a == "--lines") {
+      show_lines = true;
     } else if (a == "--frame-ids-from-names") {
       ids_from_names = true;
     } else if (a == "--debug-png") {
@@ -213,6 +220,7 @@ int main(int argc, char** argv) {
   // The pictures show the workspace: keep it on the winning mount's search.
   if (!debug_dir.empty()) cfg.workspace_shows_result = true;
   estimator::HandrailDetector detector(cfg);
+  detector.set_line_trace(show_lines);
   estimator::TrackerConfig track_cfg;
   track_cfg.target_standoff_m = cfg.target_standoff_m;
   estimator::HandrailTracker tracker(track_cfg);
@@ -253,6 +261,13 @@ int main(int argc, char** argv) {
       line.pop_back();  // the closing brace
       line += ",\"mount_search\":" +
               tools::mounts_to_json(detector.last_dominant_plane(), detector.last_mounts()) + "}";
+    }
+    if (show_lines) {
+      const estimator::LineTrace& trace = detector.last_line_trace();
+      line.pop_back();  // the closing brace
+      line += ",\"lines\":" + tools::line_trace_to_json(trace);
+      if (trace.dropped > 0) line += ",\"lines_not_kept\":" + std::to_string(trace.dropped);
+      line += "}";
     }
     if (sequence) {
       line.pop_back();  // the closing brace

@@ -7,6 +7,7 @@
 #include "estimator/config.hpp"
 #include "estimator/handrail_pose.hpp"
 #include "estimator/line_estimation.hpp"
+#include "estimator/line_trace.hpp"
 #include "estimator/mount_surfaces.hpp"
 #include "estimator/organized_cloud.hpp"
 #include "estimator/pixel_scale.hpp"
@@ -51,6 +52,10 @@ class HandrailDetector {
   const MountHypotheses& last_mounts() const { return mounts_; }
   // ... and the dominant plane they are measured from (zero normal: none).
   const Plane& last_dominant_plane() const { return dominant_; }
+  // Every line the last frame put to the tests, with its verdict, when
+  // set_line_trace(true) (line_trace.hpp); empty otherwise.
+  void set_line_trace(bool on) { trace_on_ = on; }
+  const LineTrace& last_line_trace() const { return trace_; }
 
  private:
   bool over_budget(std::int64_t start_us) const;
@@ -79,6 +84,9 @@ class HandrailDetector {
   // and which of two finds over mounts is better.
   bool along_gripper(const HandrailDetection& d) const;
   bool better_find(const HandrailDetection& a, const HandrailDetection& b) const;
+  // Adds a tested line to the trace (trace_on_).
+  void trace_line(LineVerdict verdict, const IndexList& inliers, const CenterLine& line,
+                  const bool ends[2], const float end_t[2]);
   // Takes a rejected line's points out of the search.
   void remove_rejected_line(LineVerdict verdict, const LineModel& refined, const CenterLine& line,
                             IndexList& active);
@@ -96,7 +104,10 @@ class HandrailDetector {
   PixelScale scale_;
   MountHypotheses mounts_;       // of the current frame
   float search_mount_m_ = 0.0f;  // wall_'s offset from the dominant plane
-  bool strict_mount_ = true;     // the front height from wall_ alone (the dominant plane)
+  LineTrace trace_;
+  bool trace_on_ = false;
+  std::uint8_t search_index_ = 0;  // the current search, for the trace
+  bool strict_mount_ = true;       // the front height from wall_ alone (the dominant plane)
 };
 
 }  // namespace estimator
