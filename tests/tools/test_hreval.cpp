@@ -76,8 +76,14 @@ void test_the_worst_frame_is_named_with_its_reason_and_drawn(void**) {
   // view as at 0.6 m, and nearer), with the detector's reason.
   if (row.find("| 4: 0-3 |") == std::string::npos ||
       row.find("[2: missed, ") == std::string::npos ||
-      row.find("](worst/no-wall.png) |") == std::string::npos) {
+      row.find("](worst/no-wall.png), [lines](worst/no-wall.lines.json) |") == std::string::npos) {
     fail_msg("unexpected failures row: %s\nreport:\n%s", row.c_str(), report.c_str());
+  }
+  // Beside the picture, the same detection with every line it tested.
+  const std::string lines = testing_support::read_text(out + "/worst/no-wall.lines.json");
+  if (lines.find("{\"frame\":\"no-wall frame 2\",\"frame_id\":2,\"state\":\"NH\"") != 0 ||
+      lines.find(",\"lines\":[") == std::string::npos || lines.back() != '\n') {
+    fail_msg("unexpected line trace: %s", lines.c_str());
   }
   unsigned w = 0, h = 0;
   assert_true(png_size(testing_support::read_text(out + "/worst/no-wall.png"), &w, &h));
@@ -99,6 +105,7 @@ void test_a_scenario_without_failures_has_no_worst_frame(void**) {
     fail_msg("expected no failures and no worst frame: %s", row.c_str());
   }
   assert_int_not_equal(access((out + "/worst/table2-iss.png").c_str(), F_OK), 0);
+  assert_int_not_equal(access((out + "/worst/table2-iss.lines.json").c_str(), F_OK), 0);
 }
 
 void test_an_unreadable_scenario_is_reported_and_the_rest_still_run(void**) {

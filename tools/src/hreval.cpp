@@ -73,9 +73,10 @@ struct ScenarioResult {
   pico_flexx::PipelineCounts tof;
   std::int64_t tof_median_us = -1;
   // The proposed method's worst failed frame on the report's path, why it
-  // failed, and its picture (relative to the output folder; empty if none).
+  // failed, its picture and its line trace (relative to the output folder;
+  // empty if none).
   std::int64_t worst_frame = -1;
-  std::string worst_reason, worst_picture;
+  std::string worst_reason, worst_picture, worst_lines;
 };
 
 double valid_share(const pico_flexx::PipelineCounts& c) {
@@ -366,9 +367,12 @@ int main(int argc, char** argv) {
         out.worst_frame = static_cast<std::int64_t>(worst.frame_index());
         out.worst_reason = worst.reason();
         const std::string picture = "worst/" + sc.name + ".png";
+        const std::string lines = "worst/" + sc.name + ".lines.json";
         if (tools::make_output_dir(out_dir + "/worst", &error) &&
-            worst.write_picture(out_dir + "/" + picture, sc.name, cfg, &error)) {
+            worst.write_picture(out_dir + "/" + picture, out_dir + "/" + lines, sc.name, cfg,
+                                &error)) {
           out.worst_picture = picture;
+          out.worst_lines = lines;
         } else {
           std::fprintf(stderr, "hreval: %s: the worst frame's picture: %s\n", sc.name.c_str(),
                        error.c_str());
@@ -527,7 +531,9 @@ int main(int argc, char** argv) {
       std::string worst = "-";
       if (m == 0 && r.worst_frame >= 0) {
         worst = std::to_string(r.worst_frame) + ": " + r.worst_reason;
-        if (!r.worst_picture.empty()) worst = "[" + worst + "](" + r.worst_picture + ")";
+        if (!r.worst_picture.empty()) {
+          worst = "[" + worst + "](" + r.worst_picture + "), [lines](" + r.worst_lines + ")";
+        }
       }
       md << "| " << r.name << " | " << kMethodNames[m] << " | "
          << tools::frame_ranges(t.missed_frames) << " | " << tools::frame_ranges(t.false_frames)

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cctype>
 
+#include <fstream>
+
+#include "common/detection_json.hpp"
 #include "common/frame_convert.hpp"
 
 namespace tools {
@@ -47,13 +50,29 @@ void WorstFrame::consider(const hal::DepthFrame& frame, const sim_hal::FrameTrut
   }
 }
 
-bool WorstFrame::write_picture(const std::string& path, const std::string& scenario,
-                               estimator::DetectorConfig cfg, std::string* error) const {
+bool WorstFrame::write_picture(const std::string& picture_path, const std::string& lines_path,
+                               const std::string& scenario, estimator::DetectorConfig cfg,
+                               std::string* error) const {
   cfg.workspace_shows_result = true;
   estimator::HandrailDetector det(cfg);
+  det.set_line_trace(true);
   std::vector<estimator::CloudPoint> buffer;
   const estimator::OrganizedCloud cloud = to_estimator_cloud(view_, &buffer);
   const estimator::HandrailDetection d = det.detect(cloud, estimator::Method::kProposed);
+  {
+    const estimator::LineTrace& trace = det.last_line_trace();
+    std::string json = detection_to_json(scenario + " frame " + std::to_string(frame_index_), d);
+    json.pop_back();  // the closing brace
+    json += ",\"lines\":" + line_trace_to_json(trace);
+    if (trace.dropped > 0) json += ",\"lines_not_kept\":" + std::to_string(trace.dropped);
+    json += "}\n";
+    std::ofstream out(lines_path);
+    out << json;
+    if (!out.flush()) {
+      *error = lines_path + ": cannot be written";
+      return false;
+    }
+  }
   std::string caption = scenario + " FRAME " + std::to_string(frame_index_) + ": " + reason_;
   std::transform(caption.begin(), caption.end(), caption.begin(),
                  [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
@@ -61,7 +80,7 @@ bool WorstFrame::write_picture(const std::string& path, const std::string& scena
       "\nGREEN: TRUE CENTRE LINES. WHITE: THE DETECTED ONE, RED ITS WALL NORMAL. DOTS: ITS "
       "ENDS (MAGENTA: SEEN)";
   const std::vector<StagePicture> stages = draw_stage_pictures(view_, cloud, det, d, truth_);
-  return contact_sheet(stages, 4, caption).write_png(path, error);
+  return contact_sheet(stages, 4, caption).write_png(picture_path, error);
 }
 
 }  // namespace tools

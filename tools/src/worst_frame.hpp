@@ -29,10 +29,13 @@ class WorstFrame {
 
   // Runs the detector on the frame again, its workspace showing the search
   // that gave the result, and writes the stage pictures as one sheet with
-  // the true centre lines in green. The detector draws each frame's random
+  // the true centre lines in green (picture_path), and the detection with
+  // every line the frame tested and its verdict (lines_path: JSON, the
+  // fields of hrdetect --lines). The detector draws each frame's random
   // streams from its frame id, so the result is the one scored.
-  bool write_picture(const std::string& path, const std::string& scenario,
-                     estimator::DetectorConfig cfg, std::string* error) const;
+  bool write_picture(const std::string& picture_path, const std::string& lines_path,
+                     const std::string& scenario, estimator::DetectorConfig cfg,
+                     std::string* error) const;
 
  private:
   std::tuple<int, double, double> rank_{-1, 0.0, 0.0};
