@@ -138,6 +138,13 @@ std::string line_trace_to_json(const estimator::LineTrace& trace) {
   return s + "]";
 }
 
+std::string with_line_trace(std::string object, const estimator::LineTrace& trace) {
+  object.pop_back();  // the closing brace
+  object += ",\"lines\":" + line_trace_to_json(trace);
+  if (trace.dropped > 0) object += ",\"lines_not_kept\":" + std::to_string(trace.dropped);
+  return object + "}";
+}
+
 std::string track_to_json(const estimator::TrackedHandrail& t) {
   std::string s = "{\"event\":\"" + std::string(to_string(t.event)) + "\"";
   if (t.valid) {

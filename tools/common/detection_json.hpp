@@ -27,6 +27,11 @@ std::string mounts_to_json(const estimator::Plane& dominant, const estimator::Mo
 // and "ends_seen" once its ends were walked.
 std::string line_trace_to_json(const estimator::LineTrace& trace);
 
+// `object` (one JSON object, as detection_to_json writes it) with the line
+// trace added as its "lines" array, and "lines_not_kept" when the trace
+// had to drop any.
+std::string with_line_trace(std::string object, const estimator::LineTrace& trace);
+
 // The tracker's state: {"event": ..., "position": [...], "axis": [...],
 // "normal": [...], "target_position": [...]} in the world frame, or
 // {"event": ...} without a track.

@@ -262,13 +262,7 @@ int main(int argc, char** argv) {
       line += ",\"mount_search\":" +
               tools::mounts_to_json(detector.last_dominant_plane(), detector.last_mounts()) + "}";
     }
-    if (show_lines) {
-      const estimator::LineTrace& trace = detector.last_line_trace();
-      line.pop_back();  // the closing brace
-      line += ",\"lines\":" + tools::line_trace_to_json(trace);
-      if (trace.dropped > 0) line += ",\"lines_not_kept\":" + std::to_string(trace.dropped);
-      line += "}";
-    }
+    if (show_lines) line = tools::with_line_trace(line, detector.last_line_trace());
     if (sequence) {
       line.pop_back();  // the closing brace
       line += ",\"track\":" + tools::track_to_json(tracker.update(d, still, still)) + "}";

@@ -59,19 +59,14 @@ bool WorstFrame::write_picture(const std::string& picture_path, const std::strin
   std::vector<estimator::CloudPoint> buffer;
   const estimator::OrganizedCloud cloud = to_estimator_cloud(view_, &buffer);
   const estimator::HandrailDetection d = det.detect(cloud, estimator::Method::kProposed);
-  {
-    const estimator::LineTrace& trace = det.last_line_trace();
-    std::string json = detection_to_json(scenario + " frame " + std::to_string(frame_index_), d);
-    json.pop_back();  // the closing brace
-    json += ",\"lines\":" + line_trace_to_json(trace);
-    if (trace.dropped > 0) json += ",\"lines_not_kept\":" + std::to_string(trace.dropped);
-    json += "}\n";
-    std::ofstream out(lines_path);
-    out << json;
-    if (!out.flush()) {
-      *error = lines_path + ": cannot be written";
-      return false;
-    }
+  std::ofstream lines(lines_path);
+  lines << with_line_trace(
+               detection_to_json(scenario + " frame " + std::to_string(frame_index_), d),
+               det.last_line_trace())
+        << "\n";
+  if (!lines.flush()) {
+    *error = lines_path + ": cannot be written";
+    return false;
   }
   std::string caption = scenario + " FRAME " + std::to_string(frame_index_) + ": " + reason_;
   std::transform(caption.begin(), caption.end(), caption.begin(),
