@@ -382,6 +382,8 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
   // pixel.
   const float fx_plus = scale.fx_px * x_plus, fx_minus = scale.fx_px * x_minus;
   const float fy_plus = scale.fy_px * y_plus, fy_minus = scale.fy_px * y_minus;
+  const float fx_plain = scale.fx_px * d_c, fy_plain = scale.fy_px * d_c;
+  const int width = static_cast<int>(cloud.width), height = static_cast<int>(cloud.height);
   // The probes are skipped where the raised run through the pixel in that
   // direction is already outside the side width test's range: that test
   // would reject the pixel whatever the probes found, and on a frame full
@@ -407,11 +409,22 @@ void cross_point_test(const OrganizedCloud& cloud, const DetectorConfig& cfg, co
         __builtin_convertvector(offsets + (offsets < zero ? -half : half), four_lanes::Ints4);
     // The probes first, each a lookup; a run's width may need a walk down
     // a column.
-    const bool x_ok = walls.along_row(q.row, q.col, 1, offset_px[0]) &&
-                      walls.along_row(q.row, q.col, -1, offset_px[1]) &&
-                      plausible(runs.row(q).width_m);
-    bool y_ok = walls.along_column(q.row, q.col, 1, offset_px[2]) &&
-                walls.along_column(q.row, q.col, -1, offset_px[3]);
+    // A widened probe whose whole segment lies past the image's edge
+    // searches at the plain distance instead: the widening is for the legs,
+    // and between the bar and the edge the wall may still show.
+    const float plain_x = fx_plain * inverse_depth[i], plain_y = fy_plain * inverse_depth[i];
+    auto within_view = [](int pos, int sign, int offset, int extent, float plain_px) {
+      const int near = (offset + 1) / 2;
+      const bool past = sign > 0 ? pos + near >= extent : pos - near < 0;
+      return past ? static_cast<int>(plain_px + 0.5f) : offset;
+    };
+    const bool x_ok =
+        walls.along_row(q.row, q.col, 1, within_view(q.col, 1, offset_px[0], width, plain_x)) &&
+        walls.along_row(q.row, q.col, -1, within_view(q.col, -1, offset_px[1], width, plain_x)) &&
+        plausible(runs.row(q).width_m);
+    bool y_ok =
+        walls.along_column(q.row, q.col, 1, within_view(q.row, 1, offset_px[2], height, plain_y)) &&
+        walls.along_column(q.row, q.col, -1, within_view(q.row, -1, offset_px[3], height, plain_y));
     if (y_ok) {
       float column_width = 0.0f, column_peak = 0.0f;
       runs.column(q, &column_width, &column_peak);

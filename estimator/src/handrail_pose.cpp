@@ -340,16 +340,19 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
       bool any_valid = false, on_bar = false, in_front = false, all_wall = true,
            raised_here = false;
       float across_sum = 0.0f;
-      int across_n = 0;
+      int across_n = 0, in_image = 0;
       for (int j = -2; j <= 2; ++j) {
         const Eigen::Vector2f px = centre + side * static_cast<float>(j);
         const int col = static_cast<int>(std::lround(px.x()));
         const int row = static_cast<int>(std::lround(px.y()));
         if (col < 0 || row < 0 || col >= w || row >= static_cast<int>(cloud.height)) {
-          all_wall = false;
-          in_front = true;  // off the image: the end is not in view
+          // The walk itself off the image: the end is not in view. A band
+          // pixel off it beside an end a pixel or two inside the border
+          // says nothing either way.
+          if (j == 0) in_front = true;
           continue;
         }
+        ++in_image;
         const std::int32_t i = row * w + col;
         if (!(ws.flags[i] & kFlagValid)) {
           all_wall = false;
@@ -385,7 +388,7 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
       // counts: a step whose valid pixels all lie low ends it, so dropouts
       // and noise farther on along a seat track do not.
       raised_runs_on = raised_runs_on && raised_here;
-      if (all_wall && !on_bar) {
+      if (all_wall && !on_bar && in_image >= 3) {
         end_seen[end] = true;
         break;
       }
