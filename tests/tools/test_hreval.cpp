@@ -52,6 +52,14 @@ std::string failure_row(const std::string& report, const std::string& scenario,
   return report.substr(at, report.find('\n', at) - at);
 }
 
+// The object of column `name` in targets.json ("{...}"), empty if none.
+std::string column_object(const std::string& json, const std::string& name) {
+  const std::size_t at = json.find("\"" + name + "\": {");
+  if (at == std::string::npos) return "";
+  const std::size_t open = json.find('{', at);
+  return json.substr(open, json.find('}', open) + 1 - open);
+}
+
 // Width and height from a PNG's IHDR chunk; false if it is not a PNG.
 bool png_size(const std::string& bytes, unsigned* w, unsigned* h) {
   if (bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) return false;
@@ -106,6 +114,43 @@ void test_a_scenario_without_failures_has_no_worst_frame(void**) {
   }
   assert_int_not_equal(access((out + "/worst/table2-iss.png").c_str(), F_OK), 0);
   assert_int_not_equal(access((out + "/worst/table2-iss.lines.json").c_str(), F_OK), 0);
+  // A flat wall alone: no issue #17 table.
+  assert_int_not_equal(access((out + "/targets.json").c_str(), F_OK), 0);
+}
+
+// Issue #17's numbers: the rack-wall scenarios pooled, the flat wall's
+// left out, the frames without a handrail counted from the one scenario
+// that has them, and the same figures in targets.json. The counts checked
+// come from the ground truth alone (3 frames each: the 1.04 m rail in
+// reach in every frame, the rack corner with no handrail in any).
+void test_the_issue_17_table_pools_the_rack_walls(void**) {
+  const std::string out = g_dir + "/targets";
+  const Result r =
+      run({"--out", out, "--max-frames", "3",
+           testing_support::source_path("sim_hal/scenarios/rack-table2-iss-1-04.json"),
+           testing_support::source_path("sim_hal/scenarios/rack-no-handrail-corner.json"),
+           write_unfindable_scenario()});
+  assert_int_equal(r.exit_status, 0);
+  const std::string report = testing_support::read_text(out + "/report.md");
+  const std::size_t at = report.find("## Issue #17's numbers");
+  if (at == std::string::npos ||
+      report.find("| figure | rack wall | pooled | target | pooled meets it |", at) ==
+          std::string::npos ||
+      report.find("| frames without a handrail: a false detection | ", at) == std::string::npos) {
+    fail_msg("no issue #17 table with a rack-wall and a pooled column:\n%s", report.c_str());
+  }
+  const std::string json = testing_support::read_text(out + "/targets.json");
+  const std::string rack = column_object(json, "rack wall");
+  if (rack.find("{\"in_reach_found\": ") != 0 ||
+      rack.find("\"in_reach_frames\": 3, \"no_target_frames\": 3,") == std::string::npos ||
+      json.find("\"flat wall\"") != std::string::npos ||
+      json.find("\"met\": {\"in_reach_found_pct\": ") == std::string::npos) {
+    fail_msg("unexpected targets.json: %s", json.c_str());
+  }
+  // One surface: the pooled column repeats it, figure for figure.
+  if (column_object(json, "pooled") != rack) {
+    fail_msg("the pooled column differs from the only surface's: %s", json.c_str());
+  }
 }
 
 void test_an_unreadable_scenario_is_reported_and_the_rest_still_run(void**) {
@@ -134,6 +179,7 @@ int main(int argc, char** argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_the_worst_frame_is_named_with_its_reason_and_drawn),
       cmocka_unit_test(test_a_scenario_without_failures_has_no_worst_frame),
+      cmocka_unit_test(test_the_issue_17_table_pools_the_rack_walls),
       cmocka_unit_test(test_an_unreadable_scenario_is_reported_and_the_rest_still_run),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -101,6 +101,15 @@ double Stats::median() const {
   return v[v.size() / 2];
 }
 
+double Stats::percentile(double p) const {
+  if (values.empty()) return NAN;
+  std::vector<double> v = values;
+  const double rank = std::ceil(std::fmin(std::fmax(p, 0.0), 100.0) / 100.0 * v.size());
+  const std::size_t k = rank < 1.0 ? 0 : static_cast<std::size_t>(rank) - 1;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
 std::string Stats::mean_sd(int decimals) const {
   if (values.empty()) return "-";
   char buf[64];
@@ -189,6 +198,8 @@ void Tally::add(const estimator::HandrailDetection& d, const sim_hal::FrameTruth
     ++correct;
     ++state_checked;
     state_right += d.state == expected_state(t);
+    correct_perpendicular.add(e.perpendicular_mm);
+    correct_axis.add(e.axis_deg);
     ++reasons["FOUND"];
     ++confusion[row][said(d.state)];
   }
@@ -216,9 +227,11 @@ void Tally::merge(const Tally& o) {
   state_right += o.state_right;
   reach_target_frames += o.reach_target_frames;
   reach_correct += o.reach_correct;
-  Stats Tally::*const all[] = {&Tally::x,      &Tally::y,     &Tally::z,      &Tally::perpendicular,
-                               &Tally::roll,   &Tally::pitch, &Tally::yaw,    &Tally::axis,
-                               &Tally::normal, &Tally::beam,  &Tally::time_ms};
+  Stats Tally::*const all[] = {
+      &Tally::x,           &Tally::y,     &Tally::z,       &Tally::perpendicular,
+      &Tally::roll,        &Tally::pitch, &Tally::yaw,     &Tally::axis,
+      &Tally::normal,      &Tally::beam,  &Tally::time_ms, &Tally::correct_perpendicular,
+      &Tally::correct_axis};
   for (Stats Tally::*st : all) {
     (this->*st).values.insert((this->*st).values.end(), (o.*st).values.begin(),
                               (o.*st).values.end());

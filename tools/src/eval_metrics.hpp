@@ -45,6 +45,8 @@ struct Stats {
   double mean() const;
   double stddev() const;
   double median() const;
+  // The nearest-rank percentile (p in [0, 100]); NaN when empty.
+  double percentile(double p) const;
   std::string mean_sd(int decimals = 1) const;  // "m +- s", or "-" when empty
 };
 
@@ -67,6 +69,10 @@ struct Tally {
   int reach_target_frames = 0;
   int reach_correct = 0;
   Stats x, y, z, perpendicular, roll, pitch, yaw, axis, normal, beam, time_ms;
+  // The two errors issue #17 names, over the correct detections alone (the
+  // ones above count every detection of a frame with a target, as the
+  // paper's Figure 15 does).
+  Stats correct_perpendicular, correct_axis;
   // Why each frame came out as it did: FOUND (the target, or a handrail in
   // view), FALSE (a detection that is not), or the detector's status
   // (NO_PLANE, NO_CANDIDATES, NO_LINE with its first line rejection, ...).

@@ -1,0 +1,162 @@
+#include "eval_targets.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <sstream>
+
+namespace tools {
+namespace {
+
+double percent(int n, int of) {
+  return of ? 100.0 * n / of : NAN;
+}
+
+// A number for JSON: null where there is none.
+std::string json_number(double v, int decimals) {
+  if (!std::isfinite(v)) return "null";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string fixed(double v, int decimals, const char* unit) {
+  if (!std::isfinite(v)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f%s", decimals, v, unit);
+  return buf;
+}
+
+std::string count_of(int n, int of, bool with_percent) {
+  if (of == 0) return "-";
+  char buf[96];
+  if (with_percent) {
+    std::snprintf(buf, sizeof buf, "%d of %d (%.2f %%)", n, of, percent(n, of));
+  } else {
+    std::snprintf(buf, sizeof buf, "%d of %d", n, of);
+  }
+  return buf;
+}
+
+// One figure of the issue: how to show it, its target, and the test.
+struct Figure {
+  const char* key;    // JSON name
+  int json_decimals;  // 0 for a count
+  const char* label;  // the table's row
+  const char* target_text;
+  double target;  // the bound, in the figure's own unit
+  bool at_least;  // the figure must be >= target (else <=)
+  std::function<double(const TargetFigures&)> value;
+  std::function<std::string(const TargetFigures&)> cell;
+};
+
+const std::vector<Figure>& figures() {
+  static const std::vector<Figure> list = {
+      {"in_reach_found_pct", 4, "frames in reach: the handrail found", ">= 98 %", 98.0, true,
+       [](const TargetFigures& f) { return percent(f.reach_found, f.reach_frames); },
+       [](const TargetFigures& f) { return count_of(f.reach_found, f.reach_frames, true); }},
+      {"no_target_false_frames", 0, "frames without a handrail: a false detection", "0", 0.0, false,
+       [](const TargetFigures& f) {
+         return f.no_target_frames ? static_cast<double>(f.no_target_false) : NAN;
+       },
+       [](const TargetFigures& f) {
+         return count_of(f.no_target_false, f.no_target_frames, false);
+       }},
+      {"state_right_pct", 4, "state (BE / OE / NE) right, over correct detections", ">= 90 %", 90.0,
+       true, [](const TargetFigures& f) { return percent(f.state_right, f.state_checked); },
+       [](const TargetFigures& f) { return count_of(f.state_right, f.state_checked, true); }},
+      {"perpendicular_median_mm", 4, "position error perpendicular to the bar, median", "<= 3 mm",
+       3.0, false, [](const TargetFigures& f) { return f.perpendicular_median_mm; },
+       [](const TargetFigures& f) { return fixed(f.perpendicular_median_mm, 2, " mm"); }},
+      {"perpendicular_p95_mm", 4, "position error perpendicular to the bar, 95th percentile",
+       "<= 10 mm", 10.0, false, [](const TargetFigures& f) { return f.perpendicular_p95_mm; },
+       [](const TargetFigures& f) { return fixed(f.perpendicular_p95_mm, 2, " mm"); }},
+      {"axis_median_deg", 4, "axis error, median", "<= 0.5 deg", 0.5, false,
+       [](const TargetFigures& f) { return f.axis_median_deg; },
+       [](const TargetFigures& f) { return fixed(f.axis_median_deg, 3, " deg"); }},
+      {"frame_time_median_ms", 4,
+       "frame time, median (hreval's wall clock; estimator_bench is the "
+       "measure of record)",
+       "<= 1 ms", 1.0, false, [](const TargetFigures& f) { return f.time_median_ms; },
+       [](const TargetFigures& f) { return fixed(f.time_median_ms, 2, " ms"); }},
+  };
+  return list;
+}
+
+// Met, not met, or nothing to judge (no frames of that kind).
+const char* verdict(const Figure& fig, const TargetFigures& f) {
+  const double v = fig.value(f);
+  if (!std::isfinite(v)) return "-";
+  return (fig.at_least ? v >= fig.target : v <= fig.target) ? "yes" : "no";
+}
+
+}  // namespace
+
+TargetFigures target_figures(const TargetColumn& c) {
+  TargetFigures f;
+  f.reach_found = c.all_frames.reach_correct;
+  f.reach_frames = c.all_frames.reach_target_frames;
+  f.no_target_false = c.no_target.false_found;
+  f.no_target_frames = c.no_target.frames;
+  f.state_right = c.all_frames.state_right;
+  f.state_checked = c.all_frames.state_checked;
+  f.perpendicular_median_mm = c.all_frames.correct_perpendicular.median();
+  f.perpendicular_p95_mm = c.all_frames.correct_perpendicular.percentile(95.0);
+  f.axis_median_deg = c.all_frames.correct_axis.median();
+  f.time_median_ms = c.all_frames.time_ms.median();
+  return f;
+}
+
+std::string targets_markdown(const std::vector<TargetColumn>& columns) {
+  std::vector<TargetFigures> f;
+  for (const TargetColumn& c : columns) f.push_back(target_figures(c));
+  std::ostringstream md;
+  md << "| figure |";
+  for (const TargetColumn& c : columns) md << ' ' << c.name << " |";
+  md << " target | " << (columns.empty() ? std::string("-") : columns.back().name)
+     << " meets it |\n|---|";
+  for (std::size_t k = 0; k < columns.size(); ++k) md << "---|";
+  md << "---|---|\n";
+  for (const Figure& fig : figures()) {
+    md << "| " << fig.label << " |";
+    for (const TargetFigures& one : f) md << ' ' << fig.cell(one) << " |";
+    md << ' ' << fig.target_text << " | " << (f.empty() ? "-" : verdict(fig, f.back())) << " |\n";
+  }
+  return md.str();
+}
+
+std::string targets_json(const std::vector<TargetColumn>& columns) {
+  std::ostringstream js;
+  js << "{\"columns\": {";
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const TargetFigures f = target_figures(columns[k]);
+    js << (k ? ", " : "") << '"' << columns[k].name << "\": {"
+       << "\"in_reach_found\": " << f.reach_found << ", \"in_reach_frames\": " << f.reach_frames
+       << ", \"no_target_frames\": " << f.no_target_frames << ", \"state_right\": " << f.state_right
+       << ", \"state_checked\": " << f.state_checked;
+    for (const Figure& fig : figures()) {
+      js << ", \"" << fig.key << "\": " << json_number(fig.value(f), fig.json_decimals);
+    }
+    js << '}';
+  }
+  js << "}, \"targets\": {";
+  bool first = true;
+  for (const Figure& fig : figures()) {
+    js << (first ? "" : ", ") << '"' << fig.key << "\": \"" << fig.target_text << '"';
+    first = false;
+  }
+  js << "}, \"met\": {";
+  first = true;
+  for (const Figure& fig : figures()) {
+    const char* v = columns.empty() ? "-" : verdict(fig, target_figures(columns.back()));
+    js << (first ? "" : ", ") << '"' << fig.key << "\": "
+       << (v[0] == 'y'   ? "true"
+           : v[0] == 'n' ? "false"
+                         : "null");
+    first = false;
+  }
+  js << "}}\n";
+  return js.str();
+}
+
+}  // namespace tools
