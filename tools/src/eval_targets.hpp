@@ -3,7 +3,9 @@
 // the proposed method over the rack-wall and Columbus scenarios (the
 // rack-wall controls apart), per surface and pooled, so that a closing note
 // quotes one table instead of summing the per-scenario rows by hand.
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "eval_metrics.hpp"
@@ -28,6 +30,22 @@ struct TargetFigures {
 };
 
 TargetFigures target_figures(const TargetColumn& column);
+
+// Frames grouped as hreval's "By surface and handrail length" table does:
+// (surface, target length or "no target") to the proposed method's tally.
+using SurfaceLengthTallies = std::map<std::pair<std::string, std::string>, Tally>;
+
+// The columns from each scenario's surface and proposed-method tally: the
+// rack walls and Columbus where any ran (the controls, "rack wall
+// (control)", apart), then their pool; empty if neither ran.
+std::vector<TargetColumn> target_columns(
+    const std::vector<std::pair<std::string, const Tally*>>& scenarios,
+    const SurfaceLengthTallies& by_surface_length);
+
+// The report's section: a heading, what is counted, the table, and the
+// flat walls' frames without a handrail with a false detection.
+std::string targets_section(const std::vector<TargetColumn>& columns,
+                            const SurfaceLengthTallies& by_surface_length);
 
 // The Markdown table (a row per figure, a column per TargetColumn, then
 // the target and whether the last column meets it).

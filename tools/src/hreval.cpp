@@ -468,36 +468,12 @@ int main(int argc, char** argv) {
   }
   // Issue #17's figures against its targets, per surface and pooled.
   {
-    std::vector<tools::TargetColumn> columns;
-    tools::TargetColumn pooled{"pooled", {}, {}};
-    for (const char* surface : {"rack wall", "Columbus"}) {
-      tools::TargetColumn c{surface, {}, {}};
-      for (const ScenarioResult& r : results) {
-        if (r.surface == surface) c.all_frames.merge(r.method[0].all);
-      }
-      if (c.all_frames.frames == 0) continue;
-      const auto none = by_surface_length[0].find({surface, "no target"});
-      if (none != by_surface_length[0].end()) c.no_target = none->second;
-      pooled.all_frames.merge(c.all_frames);
-      pooled.no_target.merge(c.no_target);
-      columns.push_back(std::move(c));
-    }
+    std::vector<std::pair<std::string, const tools::Tally*>> scenarios;
+    for (const ScenarioResult& r : results) scenarios.emplace_back(r.surface, &r.method[0].all);
+    const std::vector<tools::TargetColumn> columns =
+        tools::target_columns(scenarios, by_surface_length[0]);
     if (!columns.empty()) {
-      columns.push_back(std::move(pooled));
-      md << "\n## Issue #17's numbers\n\nProposed method, the report's frame path, over the "
-            "rack-wall and Columbus scenarios run (the rack-wall controls apart), per surface "
-            "and pooled; met or not judged on the pooled column. Frames without a handrail: "
-            "those of the surface's frames with no target (any detection there is false). "
-            "Errors: over the correct detections of the target (the Table 2 tables and charts "
-            "count every detection of a frame with a target, as the paper's Figure 15 does). "
-            "Also in `targets.json`.\n\n"
-         << tools::targets_markdown(columns);
-      const auto flat = by_surface_length[0].find({"flat wall", "no target"});
-      if (flat != by_surface_length[0].end()) {
-        md << "\nFlat walls (the issue asks them no worse than before): "
-           << flat->second.false_found << " of " << flat->second.frames
-           << " frames without a handrail with a false detection.\n";
-      }
+      md << tools::targets_section(columns, by_surface_length[0]);
       std::ofstream(out_dir + "/targets.json") << tools::targets_json(columns);
     }
   }
