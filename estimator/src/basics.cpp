@@ -160,6 +160,8 @@ const char* to_string(LineVerdict verdict) {
       return "SOLID_BELOW";
     case LineVerdict::kTooFar:
       return "TOO_FAR";
+    case LineVerdict::kNotOnTrack:
+      return "NOT_ON_TRACK";
     case LineVerdict::kCrossesBar:
       return "CROSSES_BAR";
     case LineVerdict::kBeamLength:

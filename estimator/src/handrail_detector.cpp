@@ -1,4 +1,6 @@
 #include "estimator/handrail_detector.hpp"
+#include <cstdio>
+#include <cstdlib>
 
 #include <chrono>
 #include <cmath>
@@ -205,6 +207,13 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   const MountBeside beside =
       measure_mount_beside(cloud, cfg_, ws_, wall_, *line, line->mount_offset_m - search_mount_m_);
   if (!mount_shows_beside(beside, cfg_)) return LineVerdict::kNoMountBeside;
+  // Seated anywhere but on the dominant plane's own face (mount 0, the
+  // flat-wall verdict), the bar stands on a rack wall, and there on a seat
+  // track.
+  const bool off_plane = std::fabs(line->mount_offset_m) > 0.0f;
+  if (cfg_.track_beside && off_plane && !track_shows_beside(beside, cfg_)) {
+    return LineVerdict::kNotOnTrack;
+  }
   // Seen from its side, a bar shows its side face; a cable only its top.
   if (!profile_fits_bar(measure_bar_profile(ws_, wall_, *line, inliers), cfg_)) {
     return LineVerdict::kShallowProfile;

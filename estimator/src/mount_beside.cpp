@@ -52,11 +52,26 @@ MountBeside measure_mount_beside(const OrganizedCloud& cloud, const DetectorConf
     const float tolerance =
         cfg.mount_beside_tolerance_m + std::fmin(2.0f * noise, kMaxNoiseWidening_m);
     const float h = wall.signed_distance(p);
-    if (std::fabs(h - mount_above_wall_m) <= tolerance || std::fabs(h - foot_m) <= tolerance) {
-      ++m.at_mount[side];
-    }
+    const float from_level_m = std::fabs(h - mount_above_wall_m);
+    const float from_foot_m = std::fabs(h - foot_m);
+    if (from_level_m > tolerance && from_foot_m > tolerance) continue;
+    ++m.at_mount[side];
+    // Noise may widen both windows until they overlap: the nearer level
+    // takes the pixel.
+    ++(from_level_m <= from_foot_m ? m.at_level : m.at_foot)[side];
   }
   return m;
+}
+
+bool track_shows_beside(const MountBeside& m, const DetectorConfig& cfg) {
+  for (int side = 0; side < 2; ++side) {
+    if (m.band_pixels[side] < cfg.track_beside_min_pixels) continue;
+    const float needed = cfg.mount_beside_min_fraction * static_cast<float>(m.band_pixels[side]);
+    if (static_cast<float>(m.at_level[side]) >= needed && m.at_level[side] > m.at_foot[side]) {
+      return false;
+    }
+  }
+  return true;
 }
 
 bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg) {

@@ -200,27 +200,31 @@ bool find_mount_under_bar(const MountHypotheses& mounts, const DetectorConfig& c
                           std::uint32_t near_count) {
   const float expected_mount = front_m - bar_front_m(cfg);
   float best_error = tolerance_m;
-  bool found = false;
-  const auto consider = [&](float mount) {
+  bool found = false, on_track = false;
+  const auto consider = [&](float mount, bool track) {
     const float error = std::fabs(mount - expected_mount);
     if (error < best_error) {
       best_error = error;
       *mount_m = mount;
       found = true;
+      on_track = track;
     }
   };
-  consider(0.0f);
+  consider(0.0f, false);
   for (std::uint32_t k = 0; k < mounts.surface_count && k < kMaxSurfacePeaks; ++k) {
-    consider(mounts.surface_m[k]);
-    consider(mounts.surface_m[k] + cfg.mount_step_m);
+    consider(mounts.surface_m[k], false);
+    consider(mounts.surface_m[k] + cfg.mount_step_m, true);
   }
   for (std::uint32_t k = 0; near_levels != nullptr && k < near_count; ++k) {
-    consider(near_levels[k]);
-    consider(near_levels[k] + cfg.mount_step_m);
+    consider(near_levels[k], false);
+    consider(near_levels[k] + cfg.mount_step_m, true);
   }
-  // A bar best explained as standing on the dominant plane itself has had
-  // its verdict, by the flat-wall rules: it is not found again here.
-  return found && std::fabs(*mount_m) >= kSameMountM;
+  // A bar best explained as standing on the dominant plane's face itself
+  // has had its verdict, by the flat-wall rules: it is not found again
+  // here. A seat track on a deeper face may top out a few millimetres off
+  // that face (faces differ by 1 to 5 cm, the track is 1.3 cm): that is a
+  // mount of its own.
+  return found && (on_track || std::fabs(*mount_m) >= kSameMountM);
 }
 
 }  // namespace estimator

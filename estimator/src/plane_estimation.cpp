@@ -220,10 +220,12 @@ constexpr int kFaceBins = 64;  // +-3.2 cm
 constexpr int kMaxFaces = 4;
 constexpr float kFaceHalfWidthM = 0.004f;
 constexpr float kFaceMinShare = 0.05f;  // of the points within the search, for a peak
+constexpr float kRackStepM = 0.01f;     // the least step between neighbouring rack faces
 
 bool pooled_faces_normal(const float* x, const float* y, const float* z, std::size_t m,
-                         const Plane& through, Eigen::Vector3f* normal) {
+                         const Plane& through, Eigen::Vector3f* normal, float* faces_span_m) {
   Eigen::Vector3f n = *normal;
+  *faces_span_m = 0.0f;
   const Eigen::Vector3f on_plane = -through.d * through.normal;
   for (int pass = 0; pass < 2; ++pass) {
     const float d = -n.dot(on_plane);
@@ -260,6 +262,10 @@ bool pooled_faces_normal(const float* x, const float* y, const float* z, std::si
       face_m[faces++] = lo + (static_cast<float>(best) + 0.5f) * kFaceBinM;
     }
     if (faces == 0) return false;
+    *faces_span_m = 0.0f;
+    for (int f = 1; f < faces; ++f) {
+      *faces_span_m = std::fmax(*faces_span_m, std::fabs(face_m[f] - face_m[0]));
+    }
     PointMoments moments[kMaxFaces];
     for (int f = 0; f < faces; ++f) moments[f].set_reference(x[0], y[0], z[0]);
     for (std::size_t k = 0; k < m; ++k) {
@@ -386,13 +392,16 @@ bool pooled_cells_normal(const OrganizedCloud& cloud, const DetectorConfig& cfg,
   // The cell whose normal has the most cells' normals within kCellAgree
   // of it (the faces' normal, if any cells lie on faces alone), and the
   // cells within that of it.
+  // Squared distances: the vote is over every pair of cells.
+  constexpr float kCellAgree2 = kCellAgree * kCellAgree;
+  const auto agree = [&](int a, int b) {
+    const float du = tu[a] - tu[b], dv = tv[a] - tv[b];
+    return du * du + dv * dv < kCellAgree2;
+  };
   int mode = -1, mode_votes = 0;
   for (int k = 0; k < cells; ++k) {
     int votes = 0;
-    for (int j = 0; j < cells; ++j) {
-      votes +=
-          std::hypot(tu[k] - tu[j], tv[k] - tv[j]) < kCellAgree ? static_cast<int>(count[j]) : 0;
-    }
+    for (int j = 0; j < cells; ++j) votes += agree(k, j) ? static_cast<int>(count[j]) : 0;
     if (votes > mode_votes) {
       mode_votes = votes;
       mode = k;
@@ -401,7 +410,7 @@ bool pooled_cells_normal(const OrganizedCloud& cloud, const DetectorConfig& cfg,
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   int used = 0;
   for (int k = 0; k < cells; ++k) {
-    if (std::hypot(tu[k] - tu[mode], tv[k] - tv[mode]) > kCellAgree) continue;
+    if (!agree(k, mode)) continue;
     scatter += cov[k] * count[k];
     ++used;
   }
@@ -542,9 +551,16 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
   // unless that tilts it again (faces too close for the tight band to hold
   // one alone), else only moved onto it.
   Eigen::Vector3f faces_normal;
+  float faces_span_m = 0.0f;
   if (cfg.plane_faces_normal && pooled_cells_normal(cloud, cfg, best, &faces_normal)) {
     if (faces_normal.dot(best.normal) < 0.0f) faces_normal = -faces_normal;
-    pooled_faces_normal(rx, ry, rz, m_refit, best, &faces_normal);
+    pooled_faces_normal(rx, ry, rz, m_refit, best, &faces_normal, &faces_span_m);
+  }
+  // Only where faces a rack's step apart show (neighbouring rack faces
+  // differ by 1 to 5 cm): a flat wall's one face, its histogram split by
+  // clutter or a slight tilt into peaks under a centimetre apart, has no
+  // steps to tilt the broad fit, and that fit of every point stands there.
+  if (faces_span_m >= kRackStepM) {
     // Within a third of a degree the broad fit stands: on a flat wall it
     // is the least-squares fit of every point, finer than any face's.
     if (faces_normal.dot(best.normal) > kKeepBroadCos) faces_normal = best.normal;

@@ -414,6 +414,39 @@ void test_no_mount_beside_is_no_handrail(void**) {
   assert_true(nothing.shows(-0.038f));
 }
 
+// The seat-track reading (track_shows_beside, NOT_ON_TRACK when on): a bar
+// on a track shows the track's foot beside it; a handrail-like cable
+// seated on the face under it shows that face, its mount's own level,
+// running on beside it.
+void test_a_bar_on_a_track_shows_the_foot_beside_it(void**) {
+  const DetectorConfig cfg;
+  auto split = [&](const BesideFrame& f, float mount_m) {
+    return measure_mount_beside(f.cloud, cfg, f.ws, f.wall, f.line, mount_m);
+  };
+  // The track 1.3 cm proud of the wall, the bar on it: the wall beside.
+  const BesideFrame on_track([](float x) { return bar_or(x, 0.0f); });
+  const MountBeside track = split(on_track, 0.013f);
+  assert_true(track.at_foot[0] > 20 && track.at_foot[1] > 20);
+  assert_int_equal(track.at_level[0] + track.at_level[1], 0);
+  assert_true(track_shows_beside(track, cfg));
+  // The cable on the face: the same face beside it, at the mount's level.
+  const MountBeside cable = split(on_track, 0.0f);
+  assert_true(cable.at_level[0] > 20 && cable.at_level[1] > 20);
+  assert_false(track_shows_beside(cable, cfg));
+  // One side a gap 12 cm deep, the other the face at the mount's level:
+  // the level still runs on where it shows.
+  const BesideFrame gap_one_side([](float x) { return bar_or(x, x > 0.0f ? -0.12f : 0.0f); });
+  assert_false(track_shows_beside(split(gap_one_side, 0.0f), cfg));
+  assert_true(track_shows_beside(split(gap_one_side, 0.013f), cfg));
+  // Nothing valid beside it: no evidence, no refusal.
+  const BesideFrame nothing([](float x) { return std::fabs(x) < 0.01f ? 0.078f : NAN; });
+  assert_true(track_shows_beside(split(nothing, 0.0f), cfg));
+  // Every counted pixel goes to exactly one of the two levels.
+  for (int side = 0; side < 2; ++side) {
+    assert_int_equal(track.at_level[side] + track.at_foot[side], track.at_mount[side]);
+  }
+}
+
 // The levels beside the bar, for the front-height test: what each side
 // shows, measured there rather than taken from the frame's surface peaks.
 void test_the_levels_beside_a_bar(void**) {
@@ -575,6 +608,7 @@ int main() {
       cmocka_unit_test(test_huge_and_not_finite_distances_are_ignored),
       cmocka_unit_test(test_the_mount_under_a_bar),
       cmocka_unit_test(test_the_mount_shows_beside_a_handrail),
+      cmocka_unit_test(test_a_bar_on_a_track_shows_the_foot_beside_it),
       cmocka_unit_test(test_no_mount_beside_is_no_handrail),
       cmocka_unit_test(test_the_levels_beside_a_bar),
       cmocka_unit_test(test_the_mount_under_a_bar_beside_it),

@@ -135,8 +135,10 @@ void test_plane_on_faces_a_centimetre_apart_is_not_tilted(void**) {
                   p.plane.d);
     assert_true(angle_deg < 0.4f);
     // Without it the broad fit stands, tilted between the faces.
+    DetectorConfig broad_only = test_config();
+    broad_only.plane_faces_normal = false;
     Random again(seed);
-    const PlaneEstimate broad = estimate_plane(cloud, test_config(), again, ws);
+    const PlaneEstimate broad = estimate_plane(cloud, broad_only, again, ws);
     assert_true(broad.found);
     const float broad_cos = static_cast<float>(s.nx) * broad.plane.normal.x() +
                             static_cast<float>(s.nz) * broad.plane.normal.z();
@@ -144,6 +146,44 @@ void test_plane_on_faces_a_centimetre_apart_is_not_tilted(void**) {
     const bool on_a_face =
         std::fabs(p.plane.d - s.d) < 0.003 || std::fabs(p.plane.d - s.d - kStep_m) < 0.003;
     assert_true(on_a_face);
+  }
+}
+
+// One face with a strip 6 mm proud across a fifth of the view (a flat wall
+// with cables lying on it), tilted 20 deg: the faces found along the cells'
+// normal lie under a centimetre apart, less than any step between rack
+// faces, so plane_faces_normal leaves the broad fit exactly as it was (the
+// flat walls are judged as before).
+void test_plane_on_one_face_keeps_the_broad_fit(void**) {
+  SyntheticScene s;
+  const double tilt = 20.0 * M_PI / 180.0;
+  s.nx = -std::sin(tilt);
+  s.nz = -std::cos(tilt);
+  s.d = 0.6;
+  s.noise_m = 0.002;
+  std::vector<CloudPoint> pts;
+  OrganizedCloud cloud = testing_support::render(s, &pts);
+  for (std::uint32_t v = cloud.height * 2 / 5; v < cloud.height * 3 / 5; ++v) {
+    for (std::uint32_t u = 0; u < cloud.width; ++u) {
+      CloudPoint& p = pts[v * cloud.width + u];
+      const float scale = static_cast<float>((s.d - 0.006) / s.d);
+      p.x_m *= scale;
+      p.y_m *= scale;
+      p.z_m *= scale;
+    }
+  }
+  DetectorConfig faces = test_config(), broad_only = test_config();
+  faces.plane_faces_normal = true;
+  broad_only.plane_faces_normal = false;
+  Workspace ws(cloud.size());
+  sample_valid_points(cloud, faces, ws);
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    Random a(seed), b(seed);
+    const PlaneEstimate with = estimate_plane(cloud, faces, a, ws);
+    const PlaneEstimate without = estimate_plane(cloud, broad_only, b, ws);
+    assert_true(with.found && without.found);
+    assert_true(with.plane.normal == without.plane.normal);
+    assert_float_equal(with.plane.d, without.plane.d, 0.0f);
   }
 }
 
@@ -228,6 +268,7 @@ int main() {
       cmocka_unit_test(test_plane_fronto_parallel_and_tilted),
       cmocka_unit_test(test_plane_across_rack_faces_is_not_tilted),
       cmocka_unit_test(test_plane_on_faces_a_centimetre_apart_is_not_tilted),
+      cmocka_unit_test(test_plane_on_one_face_keeps_the_broad_fit),
       cmocka_unit_test(test_plane_on_a_face_holding_a_quarter_of_the_view),
       cmocka_unit_test(test_plane_fails_without_support),
       cmocka_unit_test(test_fit_plane_orients_toward_camera),

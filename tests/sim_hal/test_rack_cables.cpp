@@ -227,6 +227,57 @@ void test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar(void**) {
   seen.report_and_check("handrail-like cable seen from its side", "as too shallow", "profile test");
 }
 
+// A handrail-like cable (2 cm thick) running out of the view both ways over
+// a rack face 2.5 cm proud of the wall, its front a bar's height (7.9 cm)
+// above that face, seen face-on: neither ends, ramps nor a side face show.
+// It is seated on the face, off the dominant plane (the wall), and that face
+// runs on beside it at the mount's own level, where beside a handrail's
+// seat track lies the face a track step lower: refused (NOT_ON_TRACK, in
+// the searches of the mounts off the plane; the plane's own search refuses
+// its first line for the flat-wall height, so the first rejection is not
+// counted here), and only that refuses it. The ISS handrail on a seat
+// track on the same face, seen the same way, is found.
+void test_a_cable_over_a_rack_face_stands_on_no_track(void**) {
+  constexpr double kFaceProud_m = 0.025, kTrackProud_m = 0.013;
+  auto rack_face = [&]() {
+    sim_hal::Scene s = flat_wall_scene();
+    // 3 m along the bar, 22 cm across it: the wall stays the dominant plane.
+    s.add_box(Eigen::Vector3d(0.5 * kFaceProud_m, 0.0, 0.0), Eigen::Matrix3d::Identity(),
+              Eigen::Vector3d(kFaceProud_m, 3.0, 0.22));
+    return s;
+  };
+  sim_hal::Scene cable_scene = rack_face(), rail_scene = rack_face();
+  const double cable_centre_m = kFaceProud_m + 0.079 - 0.01;
+  cable_scene.add_cable(
+      {Eigen::Vector3d(cable_centre_m, -1.5, 0.0), Eigen::Vector3d(cable_centre_m, 1.5, 0.0)},
+      0.02);
+  rail_scene.add_box(Eigen::Vector3d(kFaceProud_m + 0.5 * kTrackProud_m, 0.0, 0.0),
+                     Eigen::Matrix3d::Identity(), Eigen::Vector3d(kTrackProud_m, 0.85, 0.026));
+  sim_hal::Handrail rail;
+  rail.kind = sim_hal::HandrailKind::kIss;
+  rail.axis = Eigen::Vector3d::UnitY();
+  rail.foot_center = Eigen::Vector3d(kFaceProud_m + kTrackProud_m, 0.0, 0.0);
+  rail_scene.add_handrail(rail);
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  estimator::DetectorConfig no_track_test = cfg;
+  no_track_test.track_beside = false;
+  estimator::HandrailDetector detector(cfg), lenient(no_track_test);
+  Rendered r;
+  CableAgainstRail seen;
+  for (std::size_t f = 0; f < 6; ++f) {
+    // Face-on within 5 deg, 0.6 to 0.7 m out, above and below the bar.
+    const double k = static_cast<double>(f % 3), side = f < 3 ? 1.0 : -1.0;
+    const Eigen::Vector3d position(0.6 + 0.05 * k, 0.04 * k, side * 0.02 * (k + 1.0));
+    const Eigen::Isometry3d T = sim_hal::camera_pose(
+        position, -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+    seen.view(cable_scene, rail_scene, T, f, detector, lenient, estimator::LineVerdict::kNotOnTrack,
+              &r);
+  }
+  seen.report_and_check("handrail-like cable over a rack face", "first as on no track",
+                        "track test", 0);
+}
+
 }  // namespace
 
 int main() {
@@ -235,6 +286,7 @@ int main() {
       cmocka_unit_test(test_short_ramps_are_refused_and_a_seat_track_is_no_ramp),
       cmocka_unit_test(test_a_ramp_the_image_edge_cuts_is_still_a_ramp),
       cmocka_unit_test(test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar),
+      cmocka_unit_test(test_a_cable_over_a_rack_face_stands_on_no_track),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -40,10 +40,15 @@ void test_config_file(void**) {
   estimator::DetectorConfig none;
   assert_true(formats::parse_detector_config("{\"handrail_types\": []}", "n.json", &none, &error));
   assert_int_equal(none.handrail_type_count, 0);
-  assert_false(none.plane_faces_normal);
-  assert_true(
-      formats::parse_detector_config("{\"plane_faces_normal\": true}", "p.json", &none, &error));
   assert_true(none.plane_faces_normal);
+  assert_true(
+      formats::parse_detector_config("{\"plane_faces_normal\": false}", "p.json", &none, &error));
+  assert_false(none.plane_faces_normal);
+  assert_true(none.track_beside);
+  assert_true(formats::parse_detector_config(
+      "{\"track_beside\": false, \"track_beside_min_pixels\": 30}", "t.json", &none, &error));
+  assert_false(none.track_beside);
+  assert_int_equal(none.track_beside_min_pixels, 30);
 
   struct Case {
     const char* text;
@@ -55,6 +60,7 @@ void test_config_file(void**) {
       {"{\n \"plane_inlier_m\": \"big\"\n}", "c.json:2: \"plane_inlier_m\" must be a number"},
       {"{\n \"plane_faces_normal\": 1\n}",
        "c.json:2: \"plane_faces_normal\" must be true or false"},
+      {"{\n \"track_beside\": \"yes\"\n}", "c.json:2: \"track_beside\" must be true or false"},
       {"{\n \"handrail\": {\"kind\": \"oval\"}\n}",
        "c.json:2: \"handrail.kind\" must be \"iss\" or \"round\""},
       {"{\n \"min_line_inliers\": 2.5\n}",

@@ -75,7 +75,7 @@ struct DetectorConfig {
   // (development set: 56 -> 81 false frames without a handrail), so it
   // waits for a test that tells them from a bar (sim_hal/README.md,
   // "Session 23").
-  bool plane_faces_normal = false;
+  bool plane_faces_normal = true;
 
   // Mount surfaces. The surface a handrail stands on need not be the
   // dominant plane: on a rack wall it is a seat track (1.3 cm proud of its
@@ -115,6 +115,17 @@ struct DetectorConfig {
   float mount_beside_tolerance_m = 0.005f;
   float mount_beside_min_fraction = 0.3f;
   std::uint32_t mount_beside_min_pixels = 4;
+  // A bar seated on a face other than the dominant plane stands on a rack
+  // wall, where handrails stand on seat tracks: past the track's half width
+  // the view shows the face a track step below its mount, or a gap, not
+  // its mount's own level running on (mount_beside.hpp, NOT_ON_TRACK).
+  // Off (session 30): it halves the development set's false frames but
+  // refuses real rails on approaches (estimator/README.md).
+  bool track_beside = true;
+  // A side of the band judged for it needs this many sampled pixels: the
+  // side behind a bar seen obliquely shows a sliver, too few to say what
+  // level runs there.
+  std::uint32_t track_beside_min_pixels = 20;
 
   // Gap distance test (eq. 1): the bar's visible surface lies between
   // offset - depth/2 and offset + depth/2 from the wall, widened by this

@@ -27,6 +27,10 @@ struct MountBeside {
   // seat track's foot below it.
   std::uint32_t band_pixels[2] = {0, 0};
   std::uint32_t at_mount[2] = {0, 0};
+  // The same pixels split between the mount's own level and a seat
+  // track's foot, each to the nearer.
+  std::uint32_t at_level[2] = {0, 0};
+  std::uint32_t at_foot[2] = {0, 0};
 };
 
 // From the lattice sample (ws.sample). `wall` is the plane the search
@@ -39,6 +43,16 @@ MountBeside measure_mount_beside(const OrganizedCloud& cloud, const DetectorConf
 // The verdict: enough of either side's band on the mount, or too few
 // pixels in both bands to tell.
 bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
+
+// Whether the band reads as a bar on a seat track, for a bar seated on a
+// face other than the dominant plane (cfg.track_beside): false when a
+// judged side has mount_beside_min_fraction of its pixels on the mount's
+// own level, and more there than on a track's foot. The ISS
+// handrails on rack walls stand on seat tracks 2.6 cm wide and 1.3 cm
+// proud; past the track's edge lies the rack face a step lower, or a gap.
+// A handrail-like cable seated on the face under it has that face running
+// on beside it at the mount's level.
+bool track_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
 
 // The surfaces right beside the bar, for the front-height test. The
 // surfaces in view (mount_surfaces.hpp) are the frame's histogram peaks,

@@ -40,6 +40,8 @@ enum class LineVerdict : std::uint8_t {
   kSolidBelow,      // its side face reaches down where a grip needs space (bar_clearance.hpp)
   kTooFar,          // its visible middle lies beyond max_find_range_m
   kCrossesBar,      // the bar's front runs at an angle to the line (line_max_turn_deg)
+  kNotOnTrack,      // on a face off the dominant plane, its mount's level runs on beside it
+                    // (mount_beside.hpp)
 };
 const char* to_string(LineVerdict verdict);
 

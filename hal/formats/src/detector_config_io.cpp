@@ -72,6 +72,7 @@ constexpr UintKey kUintKeys[] = {
     {"front_peak_mounts", &estimator::DetectorConfig::front_peak_mounts},
     {"mount_accept_inliers", &estimator::DetectorConfig::mount_accept_inliers},
     {"mount_beside_min_pixels", &estimator::DetectorConfig::mount_beside_min_pixels},
+    {"track_beside_min_pixels", &estimator::DetectorConfig::track_beside_min_pixels},
 };
 
 std::string at(const std::string& path, const JsonValue& v) {
@@ -202,12 +203,12 @@ bool read_detector_config(const formats::JsonValue& root, const std::string& pat
       if (!read_handrail_types(v, path, quoted(key), &c, error)) return false;
       continue;
     }
-    if (key == "plane_faces_normal") {
+    if (key == "plane_faces_normal" || key == "track_beside") {
       if (!v.is_bool()) {
         *error = at(path, v) + quoted(key) + " must be true or false";
         return false;
       }
-      c.plane_faces_normal = v.boolean;
+      (key == "plane_faces_normal" ? c.plane_faces_normal : c.track_beside) = v.boolean;
       continue;
     }
     bool known = false;
