@@ -123,9 +123,10 @@ struct DetectorConfig {
   // refuses real rails on approaches (estimator/README.md).
   bool track_beside = true;
   // A side of the band judged for it needs this many sampled pixels: the
-  // side behind a bar seen obliquely shows a sliver, too few to say what
-  // level runs there.
-  std::uint32_t track_beside_min_pixels = 20;
+  // side behind a bar seen obliquely shows a sliver (3 to 7 sampled pixels
+  // behind the 0.55 m rail seen 25 to 30 deg from its side), too few to say
+  // what level runs there.
+  std::uint32_t track_beside_min_pixels = 10;
 
   // Gap distance test (eq. 1): the bar's visible surface lies between
   // offset - depth/2 and offset + depth/2 from the wall, widened by this
