@@ -1,6 +1,4 @@
 #include "estimator/handrail_detector.hpp"
-#include <cstdio>
-#include <cstdlib>
 
 #include <chrono>
 #include <cmath>

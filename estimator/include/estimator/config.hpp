@@ -70,11 +70,12 @@ struct DetectorConfig {
   // that lie on one face and a fit over each face about its own centroid
   // (plane_estimation.cpp). On rack walls the broad plane tilts 1 to 2 deg
   // (median) between faces a centimetre apart, up to 5 to 13 deg; this
-  // takes the development set's median under 0.4 deg. Off by default:
-  // with the wall right, more handrail-like cables pass the height test
-  // (development set: 56 -> 81 false frames without a handrail), so it
-  // waits for a test that tells them from a bar (sim_hal/README.md,
-  // "Session 23").
+  // takes the development set's median under 0.4 deg. Applied only where
+  // faces a centimetre or more apart show (a flat wall keeps its broad
+  // fit). Off until session 30: with the wall right, more handrail-like
+  // cables pass the height test (development set: 56 -> 81 false frames
+  // without a handrail, session 23), which the seat-track test below
+  // (track_beside) now refuses (sim_hal/README.md, "Session 30").
   bool plane_faces_normal = true;
 
   // Mount surfaces. The surface a handrail stands on need not be the
@@ -119,8 +120,10 @@ struct DetectorConfig {
   // wall, where handrails stand on seat tracks: past the track's half width
   // the view shows the face a track step below its mount, or a gap, not
   // its mount's own level running on (mount_beside.hpp, NOT_ON_TRACK).
-  // Off (session 30): it halves the development set's false frames but
-  // refuses real rails on approaches (estimator/README.md).
+  // With plane_faces_normal (on its own it refuses real rails on close
+  // approaches, where the broad plane tilts across faces and the levels
+  // beside the bar come out wrong): development set's false frames without
+  // a handrail 52 -> 18 of 268 (session 30).
   bool track_beside = true;
   // A side of the band judged for it needs this many sampled pixels: the
   // side behind a bar seen obliquely shows a sliver (3 to 7 sampled pixels
