@@ -186,8 +186,10 @@ std::string targets_json(const std::vector<TargetColumn>& columns) {
   }
   js << "}, \"met\": {";
   first = true;
+  // The pooled column (the last) is the one held to the targets.
+  const TargetFigures pooled = columns.empty() ? TargetFigures{} : target_figures(columns.back());
   for (const Figure& fig : figures()) {
-    const char* v = columns.empty() ? "-" : verdict(fig, target_figures(columns.back()));
+    const char* v = columns.empty() ? "-" : verdict(fig, pooled);
     js << (first ? "" : ", ") << '"' << fig.key << "\": "
        << (v[0] == 'y'   ? "true"
            : v[0] == 'n' ? "false"
