@@ -1,14 +1,13 @@
 // The rack-wall parts of the detector on their own: the surfaces in view
 // and the mounts they offer (mount_surfaces), the surface found under a bar
 // from its front face's height, and the ISS handrail lengths
-// (handrail_types).
+// (handrail_types). What shows beside a bar is in test_mount_beside.cpp.
 #include <cmath>
 #include <vector>
 
 #include "cmocka_cpp.hpp"
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_types.hpp"
-#include "estimator/mount_beside.hpp"
 #include "estimator/mount_surfaces.hpp"
 #include "estimator/plane_estimation.hpp"
 #include "synthetic_cloud.hpp"
@@ -338,169 +337,6 @@ void test_one_configured_length_without_types(void**) {
   assert_near(longest_handrail_m(cfg), 0.3f, 1e-6f);
 }
 
-// A frame for the mount-beside step: a fronto-parallel grid of points 4 mm
-// apart, 1 m away (the wall z = 1, its normal toward the camera), a bar's
-// centre line along image y through the middle. `height_beside` gives each
-// pixel's height above the wall from its distance across the bar (x); NAN
-// leaves it invalid.
-struct BesideFrame {
-  std::vector<CloudPoint> points;
-  OrganizedCloud cloud;
-  Workspace ws{224 * 171};
-  Plane wall;
-  CenterLine line;
-  template <typename F>
-  explicit BesideFrame(F height_beside) : points(224 * 171) {
-    for (int r = 0; r < 171; ++r) {
-      for (int c = 0; c < 224; ++c) {
-        const float x = 0.004f * static_cast<float>(c - 112),
-                    y = 0.004f * static_cast<float>(r - 85);
-        const float h = height_beside(x);
-        CloudPoint& p = points[static_cast<std::size_t>(r) * 224 + c];
-        p = CloudPoint{x,      y,   1.0f - (std::isnan(h) ? 0.0f : h),
-                       0.001f, 100, static_cast<std::uint8_t>(std::isnan(h) ? 0 : 255)};
-      }
-    }
-    cloud.width = 224;
-    cloud.height = 171;
-    cloud.points = points.data();
-    sample_valid_points(cloud, DetectorConfig{}, ws);
-    wall.normal = Eigen::Vector3f(0, 0, -1);
-    wall.d = 1.0f;
-    line.point = Eigen::Vector3f(0, 0, 1.0f - 0.074f);
-    line.axis = Eigen::Vector3f(0, 1, 0);
-    line.t_min_m = -0.25f;
-    line.t_max_m = 0.25f;
-  }
-  bool shows(float mount_m) const {
-    const DetectorConfig cfg;
-    return mount_shows_beside(measure_mount_beside(cloud, cfg, ws, wall, line, mount_m), cfg);
-  }
-};
-
-// The bar's own pixels (within 1 cm across) stand at its front; beside it,
-// what each case puts there.
-float bar_or(float x, float beside) {
-  return std::fabs(x) < 0.01f ? 0.078f : beside;
-}
-
-void test_the_mount_shows_beside_a_handrail(void**) {
-  // A seat track's foot (the rack face 1.3 cm below the track) beside it:
-  // the bar stands on the track, 1.3 cm above the wall.
-  const BesideFrame on_track([](float x) { return bar_or(x, 0.0f); });
-  assert_true(on_track.shows(0.013f));
-  // A flat wall: the bar stands on it.
-  assert_true(on_track.shows(0.0f));
-  // A gap 12 cm deep on one side, the face on the other: still standing.
-  const BesideFrame gap_one_side([](float x) { return bar_or(x, x > 0.0f ? -0.12f : 0.0f); });
-  assert_true(gap_one_side.shows(0.013f));
-  const MountBeside m = measure_mount_beside(gap_one_side.cloud, DetectorConfig{}, gap_one_side.ws,
-                                             gap_one_side.wall, gap_one_side.line, 0.013f);
-  assert_true(m.band_pixels[0] >= 20 && m.band_pixels[1] >= 20);
-  assert_true(m.at_mount[0] == 0 || m.at_mount[1] == 0);
-}
-
-void test_no_mount_beside_is_no_handrail(void**) {
-  // Something a handrail's height above a surface 3.8 cm behind the wall,
-  // with nothing at that depth beside it (a rack's edge strip over a deep
-  // groove, seen as a bar on a mount elsewhere in view).
-  const BesideFrame strip([](float x) { return bar_or(x, -0.12f); });
-  assert_false(strip.shows(-0.038f));
-  // ... nor is the wall it was measured from a mount 3.8 cm off.
-  const BesideFrame wall_beside([](float x) { return bar_or(x, 0.0f); });
-  assert_false(wall_beside.shows(-0.038f));
-  // Nothing valid beside it at all: no evidence, no refusal.
-  const BesideFrame nothing([](float x) { return std::fabs(x) < 0.01f ? 0.078f : NAN; });
-  assert_true(nothing.shows(-0.038f));
-}
-
-// The seat-track reading (track_shows_beside, NOT_ON_TRACK when on): a bar
-// on a track shows the track's foot beside it; a handrail-like cable
-// seated on the face under it shows that face, its mount's own level,
-// running on beside it.
-void test_a_bar_on_a_track_shows_the_foot_beside_it(void**) {
-  const DetectorConfig cfg;
-  auto split = [&](const BesideFrame& f, float mount_m) {
-    return measure_mount_beside(f.cloud, cfg, f.ws, f.wall, f.line, mount_m);
-  };
-  // The track 1.3 cm proud of the wall, the bar on it: the wall beside.
-  const BesideFrame on_track([](float x) { return bar_or(x, 0.0f); });
-  const MountBeside track = split(on_track, 0.013f);
-  assert_true(track.at_foot[0] > 20 && track.at_foot[1] > 20);
-  assert_int_equal(track.at_level[0] + track.at_level[1], 0);
-  assert_true(track_shows_beside(track, cfg));
-  // The cable on the face: the same face beside it, at the mount's level.
-  const MountBeside cable = split(on_track, 0.0f);
-  assert_true(cable.at_level[0] > 20 && cable.at_level[1] > 20);
-  assert_false(track_shows_beside(cable, cfg));
-  // One side a gap 12 cm deep, the other the face at the mount's level:
-  // the level still runs on where it shows.
-  const BesideFrame gap_one_side([](float x) { return bar_or(x, x > 0.0f ? -0.12f : 0.0f); });
-  assert_false(track_shows_beside(split(gap_one_side, 0.0f), cfg));
-  assert_true(track_shows_beside(split(gap_one_side, 0.013f), cfg));
-  // Nothing valid beside it: no evidence, no refusal.
-  const BesideFrame nothing([](float x) { return std::fabs(x) < 0.01f ? 0.078f : NAN; });
-  assert_true(track_shows_beside(split(nothing, 0.0f), cfg));
-  // Every counted pixel goes to exactly one of the two levels.
-  for (int side = 0; side < 2; ++side) {
-    assert_int_equal(track.at_level[side] + track.at_foot[side], track.at_mount[side]);
-  }
-}
-
-// The levels beside the bar, for the front-height test: what each side
-// shows, measured there rather than taken from the frame's surface peaks.
-void test_the_levels_beside_a_bar(void**) {
-  const DetectorConfig cfg;
-  // A rack frame 2.2 cm behind the wall on one side (the track's foot: too
-  // narrow a strip to be a peak of the whole frame), a gap on the other.
-  const BesideFrame frame_strip([](float x) { return bar_or(x, x > 0.0f ? -0.022f : -0.12f); });
-  LevelsBeside near = find_levels_beside(frame_strip.cloud, cfg, frame_strip.ws, frame_strip.wall,
-                                         frame_strip.line, -0.06f, 0.01f);
-  assert_int_equal(near.count, 1);
-  assert_near(near.level_m[0], -0.022f, 0.0005f);
-  // The same surface on both sides: two levels, both it.
-  const BesideFrame both([](float x) { return bar_or(x, -0.022f); });
-  near = find_levels_beside(both.cloud, cfg, both.ws, both.wall, both.line, -0.06f, 0.01f);
-  assert_int_equal(near.count, 2);
-  assert_near(near.level_m[0], -0.022f, 0.0005f);
-  assert_near(near.level_m[1], -0.022f, 0.0005f);
-  // Outside the range looked in: nothing.
-  near = find_levels_beside(both.cloud, cfg, both.ws, both.wall, both.line, -0.015f, 0.01f);
-  assert_int_equal(near.count, 0);
-  // Nothing valid beside the bar, or an empty range: nothing, and no NaN.
-  const BesideFrame nothing([](float x) { return std::fabs(x) < 0.01f ? 0.078f : NAN; });
-  near =
-      find_levels_beside(nothing.cloud, cfg, nothing.ws, nothing.wall, nothing.line, -0.06f, 0.01f);
-  assert_int_equal(near.count, 0);
-  near = find_levels_beside(both.cloud, cfg, both.ws, both.wall, both.line, 0.01f, -0.06f);
-  assert_int_equal(near.count, 0);
-  near = find_levels_beside(both.cloud, cfg, both.ws, both.wall, both.line, NAN, 0.01f);
-  assert_int_equal(near.count, 0);
-}
-
-void test_the_mount_under_a_bar_beside_it(void**) {
-  const DetectorConfig cfg;
-  // The frame's surfaces: the dominant face and one 5 cm behind it; the
-  // bar's front 7.3 cm above the dominant plane fits neither (nor a track
-  // on either).
-  MountHypotheses m;
-  m.surface_count = 2;
-  m.surface_m[0] = 0.0f;
-  m.surface_m[1] = -0.05f;
-  const float front = -0.018f + 0.013f + kFront;
-  float mount = 99.0f;
-  assert_false(find_mount_under_bar(m, cfg, front, 0.004f, &mount));
-  // Beside it, a strip 1.8 cm behind the plane: the bar is on a seat track
-  // on that strip.
-  const float near_levels[1] = {-0.018f};
-  assert_true(find_mount_under_bar(m, cfg, front, 0.004f, &mount, near_levels, 1));
-  assert_near(mount, -0.018f + 0.013f, 1e-6f);
-  // A level beside it that is the dominant plane is still the flat-wall
-  // search's to judge.
-  const float plane_level[1] = {0.0f};
-  assert_false(find_mount_under_bar(m, cfg, kFront, 0.004f, &mount, plane_level, 1));
-}
-
 // A partial bar may be as short as 35 % of the shortest known handrail,
 // but never longer than the 8 cm clutter floor requires.
 void test_the_shortest_partial_bar(void**) {
@@ -607,11 +443,6 @@ int main() {
       cmocka_unit_test(test_a_front_peak_too_far_behind_the_plane_is_no_mount),
       cmocka_unit_test(test_huge_and_not_finite_distances_are_ignored),
       cmocka_unit_test(test_the_mount_under_a_bar),
-      cmocka_unit_test(test_the_mount_shows_beside_a_handrail),
-      cmocka_unit_test(test_a_bar_on_a_track_shows_the_foot_beside_it),
-      cmocka_unit_test(test_no_mount_beside_is_no_handrail),
-      cmocka_unit_test(test_the_levels_beside_a_bar),
-      cmocka_unit_test(test_the_mount_under_a_bar_beside_it),
       cmocka_unit_test(test_shifted_pass_equals_a_full_pass),
       cmocka_unit_test(test_search_below_the_plane_leaves_the_plane_out_of_the_list),
       cmocka_unit_test(test_iss_lengths_are_matched_by_ratio),

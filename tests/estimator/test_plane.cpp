@@ -24,6 +24,26 @@ DetectorConfig test_config() {
   return cfg;
 }
 
+// A wall tilted about the image's y axis, d_m away along its normal, under
+// 2 mm of noise.
+SyntheticScene tilted_wall(double tilt_deg, double d_m) {
+  SyntheticScene s;
+  const double t = tilt_deg * M_PI / 180.0;
+  s.nx = -std::sin(t);
+  s.nz = -std::cos(t);
+  s.d = d_m;
+  s.noise_m = 0.002;
+  return s;
+}
+
+// A rendered pixel moved along its ray by `scale` (a face nearer or
+// farther), its noise scaled with it.
+void move_along_ray(CloudPoint& p, double scale) {
+  p.x_m *= static_cast<float>(scale);
+  p.y_m *= static_cast<float>(scale);
+  p.z_m *= static_cast<float>(scale);
+}
+
 void test_plane_fronto_parallel_and_tilted(void**) {
   const DetectorConfig cfg = test_config();
   for (double tilt_deg : {0.0, 30.0, 50.0}) {
@@ -66,11 +86,7 @@ void test_plane_across_rack_faces_is_not_tilted(void**) {
       CloudPoint& p = pts[v * cloud.width + u];
       int k = 0;
       while (static_cast<double>(u) >= edges[k] * cloud.width) ++k;
-      // Along the pixel's ray to its face, the noise scaled with it.
-      const float scale = static_cast<float>(faces_z[k] / s.d);
-      p.x_m *= scale;
-      p.y_m *= scale;
-      p.z_m *= scale;
+      move_along_ray(p, faces_z[k] / s.d);
     }
   }
   Workspace ws(cloud.size());
@@ -103,23 +119,14 @@ void test_plane_across_rack_faces_is_not_tilted(void**) {
 void test_plane_on_faces_a_centimetre_apart_is_not_tilted(void**) {
   DetectorConfig cfg = test_config();
   cfg.plane_faces_normal = true;
-  SyntheticScene s;
-  const double tilt = 10.0 * M_PI / 180.0;
-  s.nx = -std::sin(tilt);
-  s.nz = -std::cos(tilt);
-  s.d = 0.40;
-  s.noise_m = 0.002;
+  const SyntheticScene s = tilted_wall(10.0, 0.40);
   std::vector<CloudPoint> pts;
   OrganizedCloud cloud = testing_support::render(s, &pts);
   constexpr double kStep_m = 0.012;
   for (std::uint32_t v = 0; v < cloud.height; ++v) {
     for (std::uint32_t u = cloud.width * 45 / 100; u < cloud.width; ++u) {
-      // Along the pixel's ray onto the face behind, the noise scaled with it.
-      CloudPoint& p = pts[v * cloud.width + u];
-      const float scale = static_cast<float>((s.d + kStep_m) / s.d);
-      p.x_m *= scale;
-      p.y_m *= scale;
-      p.z_m *= scale;
+      // Onto the face behind.
+      move_along_ray(pts[v * cloud.width + u], (s.d + kStep_m) / s.d);
     }
   }
   Workspace ws(cloud.size());
@@ -155,21 +162,12 @@ void test_plane_on_faces_a_centimetre_apart_is_not_tilted(void**) {
 // faces, so plane_faces_normal leaves the broad fit exactly as it was (the
 // flat walls are judged as before).
 void test_plane_on_one_face_keeps_the_broad_fit(void**) {
-  SyntheticScene s;
-  const double tilt = 20.0 * M_PI / 180.0;
-  s.nx = -std::sin(tilt);
-  s.nz = -std::cos(tilt);
-  s.d = 0.6;
-  s.noise_m = 0.002;
+  const SyntheticScene s = tilted_wall(20.0, 0.6);
   std::vector<CloudPoint> pts;
   OrganizedCloud cloud = testing_support::render(s, &pts);
   for (std::uint32_t v = cloud.height * 2 / 5; v < cloud.height * 3 / 5; ++v) {
     for (std::uint32_t u = 0; u < cloud.width; ++u) {
-      CloudPoint& p = pts[v * cloud.width + u];
-      const float scale = static_cast<float>((s.d - 0.006) / s.d);
-      p.x_m *= scale;
-      p.y_m *= scale;
-      p.z_m *= scale;
+      move_along_ray(pts[v * cloud.width + u], (s.d - 0.006) / s.d);
     }
   }
   DetectorConfig faces = test_config(), broad_only = test_config();
