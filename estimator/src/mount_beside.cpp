@@ -55,7 +55,6 @@ MountBeside measure_mount_beside(const OrganizedCloud& cloud, const DetectorConf
     const float from_level_m = std::fabs(h - mount_above_wall_m);
     const float from_foot_m = std::fabs(h - foot_m);
     if (from_level_m > tolerance && from_foot_m > tolerance) continue;
-    ++m.at_mount[side];
     // Noise may widen both windows until they overlap: the nearer level
     // takes the pixel.
     ++(from_level_m <= from_foot_m ? m.at_level : m.at_foot)[side];
@@ -79,7 +78,7 @@ bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg) {
   for (int side = 0; side < 2; ++side) {
     if (m.band_pixels[side] < cfg.mount_beside_min_pixels) continue;
     judged = true;
-    if (static_cast<float>(m.at_mount[side]) >=
+    if (static_cast<float>(m.at_mount(side)) >=
         cfg.mount_beside_min_fraction * static_cast<float>(m.band_pixels[side])) {
       return true;
     }

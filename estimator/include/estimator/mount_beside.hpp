@@ -23,14 +23,13 @@ namespace estimator {
 
 struct MountBeside {
   // Per side of the bar (across it, in the wall plane): the lattice sample's
-  // valid pixels in the band, and of them those on the mount's level or a
-  // seat track's foot below it.
+  // valid pixels in the band, and of them those on the mount's own level
+  // and those on a seat track's foot below it (each pixel to the nearer).
   std::uint32_t band_pixels[2] = {0, 0};
-  std::uint32_t at_mount[2] = {0, 0};
-  // The same pixels split between the mount's own level and a seat
-  // track's foot, each to the nearer.
   std::uint32_t at_level[2] = {0, 0};
   std::uint32_t at_foot[2] = {0, 0};
+  // On either: what shows the bar stands there.
+  std::uint32_t at_mount(int side) const { return at_level[side] + at_foot[side]; }
 };
 
 // From the lattice sample (ws.sample). `wall` is the plane the search
