@@ -129,6 +129,11 @@ void add_front_peak_mounts(const Histogram& h, const DetectorConfig& cfg, float 
       best_pixels = pixels;
     }
     if (best_pixels == 0) return;
+    bool face_echo = false;
+    for (std::uint32_t k = 0; k < out->surface_count; ++k) {
+      face_echo |= std::fabs(out->surface_m[k] - (best_m + front_m)) < kFrontWindowM;
+    }
+    if (face_echo) return;
     out->offset_m[out->count] = best_m;
     out->front_pixels[out->count] = best_pixels;
     ++out->count;

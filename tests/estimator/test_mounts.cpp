@@ -168,6 +168,19 @@ void test_a_front_peak_too_far_behind_the_plane_is_no_mount(void**) {
   }
 }
 
+// A rack face 4.5 cm proud of the plane is a surface, and it is also the
+// histogram's strongest peak where a bar's front could stand (over a mount
+// 3.3 cm behind the plane). That peak is the face, not a bar: no mount is
+// read off it (its search would put the whole face in the gap set).
+void test_a_face_at_a_front_height_is_no_front_peak(void**) {
+  const float face_m = 0.045f;
+  const DistanceFrame f({{0.0f, 0.6f}, {face_m, 0.3f}});
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, DetectorConfig{}, f.ws);
+  assert_true(has_surface(m, face_m));
+  assert_int_equal(m.front_peak_count, 0);
+  assert_false(has_mount(m, face_m - kFront));
+}
+
 void test_huge_and_not_finite_distances_are_ignored(void**) {
   DistanceFrame f({{0.0f, 0.5f}});
   const std::size_t n = f.cloud.size();
@@ -441,6 +454,7 @@ int main() {
       cmocka_unit_test(test_a_small_surface_is_no_surface),
       cmocka_unit_test(test_a_face_too_small_for_a_peak_is_found_under_its_bar),
       cmocka_unit_test(test_a_front_peak_too_far_behind_the_plane_is_no_mount),
+      cmocka_unit_test(test_a_face_at_a_front_height_is_no_front_peak),
       cmocka_unit_test(test_huge_and_not_finite_distances_are_ignored),
       cmocka_unit_test(test_the_mount_under_a_bar),
       cmocka_unit_test(test_shifted_pass_equals_a_full_pass),
