@@ -129,6 +129,13 @@ void add_front_peak_mounts(const Histogram& h, const DetectorConfig& cfg, float 
       best_pixels = pixels;
     }
     if (best_pixels == 0) return;
+    // The strongest peak may be a face in view (a surface peak) standing
+    // at a bar front's height over some mount: that is the face's own
+    // peak, not a bar's. Its search would put the whole face in the gap
+    // set for the cross test to refuse pixel by pixel; and the weaker peaks
+    // behind it are no better supported than the surface mounts already
+    // searched (taking the next one instead let more clutter through on
+    // the development set), so none is added.
     bool face_echo = false;
     for (std::uint32_t k = 0; k < out->surface_count; ++k) {
       face_echo |= std::fabs(out->surface_m[k] - (best_m + front_m)) < kFrontWindowM;
