@@ -135,7 +135,13 @@ void add_front_peak_mounts(const Histogram& h, const DetectorConfig& cfg, float 
     // set for the cross test to refuse pixel by pixel; and the weaker peaks
     // behind it are no better supported than the surface mounts already
     // searched (taking the next one instead let more clutter through on
-    // the development set), so none is added.
+    // the development set), so none is added. What this gives up: a bar
+    // whose own front is big enough to make a surface peak, standing on a
+    // face too small to make one; neither the development nor the scored
+    // set showed one (session 31). Demoting the surface mounts whose
+    // fronts fall on a face, the same way, lost such bars by the dozen
+    // (dev-rack-table2-iss-0-53 100 -> 87 %): close up, the bar's front is
+    // a surface peak and its own mount looks like a face's echo.
     bool face_echo = false;
     for (std::uint32_t k = 0; k < out->surface_count; ++k) {
       face_echo |= std::fabs(out->surface_m[k] - (best_m + front_m)) < kFrontWindowM;
