@@ -224,7 +224,8 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // The front's height in the search's distances (from its wall, not the
   // mount the line was seated on).
   const float front_level_m = line->front_height_m + line->mount_offset_m - search_mount_m_;
-  detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, ends, end_t, drop_m, front_level_m);
+  detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, wall_.normal, ends, end_t, drop_m,
+              front_level_m);
   // Seen or not: an end the image's edge, an occluder or dropouts cut off
   // still shows whatever of it lies in view. A handrail's front holds to
   // its leg up to the cut; a cable coming down a ramp there has left the

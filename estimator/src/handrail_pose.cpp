@@ -240,9 +240,100 @@ bool line_follows_front(const Eigen::Vector3f& candidate_direction, const Center
   return cos_turn >= std::cos(cfg.line_max_turn_deg * 3.14159265f / 180.0f);
 }
 
+namespace {
+
+// What the end walk sees across its path. Past the bar's own pixels (its
+// inliers) the walk crosses gaps where something hid the bar, but it must
+// not take raised ground for the bar: across the walk a bar's raised run
+// is a bar's width wide, with a centimetre and a half to spare each side
+// (and, seen obliquely, the leg at this end and the near side face reach
+// aside of it in the image by the leg's projection); along a box's edge or
+// over its top the run goes on.
+class RaisedAcrossWalk {
+ public:
+  RaisedAcrossWalk(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
+                   const Workspace& ws, const CenterLine& line, const Eigen::Vector3f& wall_normal,
+                   float t_inner, float z_m, const Eigen::Vector2f& side, float outward_sign)
+      : cloud_(cloud),
+        ws_(ws),
+        line_(line),
+        side_(side),
+        raised_min_m_(gap_min_m(cfg)),
+        t_inner_(t_inner),
+        outward_sign_(outward_sign) {
+    const Eigen::Vector3f bar_end = line.point + t_inner * line.axis;
+    const Eigen::Vector3f leg_foot = bar_end - cfg.handrail.bar_center_offset_m * wall_normal;
+    float leg_aside_px = 0.0f;
+    if (bar_end.z() > 0.0f && leg_foot.z() > 0.0f) {
+      const Eigen::Vector2f leg_px(
+          scale.fx_px * (leg_foot.x() / leg_foot.z() - bar_end.x() / bar_end.z()),
+          scale.fy_px * (leg_foot.y() / leg_foot.z() - bar_end.y() / bar_end.z()));
+      leg_aside_px = leg_px.dot(side);
+    }
+    const float bar_m = cfg.handrail.bar_width_m + 0.03f;
+    run_max_px_ =
+        std::fmax(scale.px_x(bar_m, z_m), scale.px_y(bar_m, z_m)) + std::fabs(leg_aside_px);
+    run_limit_px_ = static_cast<int>(std::ceil(run_max_px_)) + 1;
+  }
+
+  // Whether the raised run across the walk through the band's pixel nearest
+  // `at` (the walk's centre) is wider than a bar's. Each way it is followed
+  // at most a bar's run: a step costs a few dozen lookups.
+  bool wider_than_bar(const Eigen::Vector2f& at) const {
+    for (const int j0 : {0, 1, -1, 2, -2}) {
+      const Eigen::Vector2f from = at + side_ * static_cast<float>(j0);
+      if (!raised(from)) continue;
+      int run = 1;
+      for (const float dir : {1.0f, -1.0f}) {
+        for (int j = 1; j <= run_limit_px_ && raised(from + side_ * (dir * static_cast<float>(j)));
+             ++j) {
+          ++run;
+        }
+      }
+      return static_cast<float>(run) > run_max_px_;
+    }
+    return false;
+  }
+
+  // Whether the pixel at `at` lies more than a centimetre past the last
+  // inlier toward this end.
+  bool past_inliers(const Eigen::Vector2f& at) const {
+    const std::int32_t i = valid_pixel(at);
+    if (i < 0) return false;
+    const float t = (point_of(cloud_, i) - line_.point).dot(line_.axis);
+    return outward_sign_ * (t - t_inner_) > 0.01f;
+  }
+
+ private:
+  std::int32_t valid_pixel(const Eigen::Vector2f& px) const {
+    const int col = static_cast<int>(std::lround(px.x()));
+    const int row = static_cast<int>(std::lround(px.y()));
+    if (col < 0 || row < 0 || col >= static_cast<int>(cloud_.width) ||
+        row >= static_cast<int>(cloud_.height)) {
+      return -1;
+    }
+    const std::int32_t i = row * static_cast<int>(cloud_.width) + col;
+    return (ws_.flags[i] & kFlagValid) ? i : -1;
+  }
+  bool raised(const Eigen::Vector2f& px) const {
+    const std::int32_t i = valid_pixel(px);
+    return i >= 0 && ws_.signed_distance_m[i] >= raised_min_m_;
+  }
+
+  const OrganizedCloud& cloud_;
+  const Workspace& ws_;
+  const CenterLine& line_;
+  Eigen::Vector2f side_;
+  float raised_min_m_, t_inner_, outward_sign_;
+  float run_max_px_ = 0.0f;
+  int run_limit_px_ = 0;
+};
+
+}  // namespace
+
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
-                 bool end_seen[2], float end_t_m[2], float end_drop_m[2], float front_level_m) {
+                 const Eigen::Vector3f& wall_normal, bool end_seen[2], float end_t_m[2], float end_drop_m[2], float front_level_m) {
   end_seen[0] = end_seen[1] = false;
   end_t_m[0] = line.t_min_m;
   end_t_m[1] = line.t_max_m;
@@ -321,6 +412,8 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     // distortion bends the bar's image, so a straight walk would slide off
     // its side and mistake the wall beside it for the wall past its end.
     const Eigen::Vector2f side(-step.y(), step.x());
+    const RaisedAcrossWalk across_walk(cloud, cfg, scale, ws, line, wall_normal, t_inner, z, side,
+                                       end == 0 ? -1.0f : 1.0f);
     int invalid_run = 0, past_bar = 0;
     float t_bar = t_inner;
     // The farthest raised pixel (above the wall's tolerance, below what
@@ -339,6 +432,9 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
       centre += step;
       bool any_valid = false, on_bar = false, in_front = false, all_wall = true,
            raised_here = false;
+      // Raised ground wider than a bar is neither the bar nor its end.
+      const bool plateau =
+          across_walk.past_inliers(centre) && across_walk.wider_than_bar(centre);
       float across_sum = 0.0f;
       int across_n = 0, in_image = 0;
       for (int j = -2; j <= 2; ++j) {
@@ -367,7 +463,7 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
           t_raised = end == 0 ? std::min(t_raised, t) : std::max(t_raised, t);
         }
         if (s > hi + 0.02f) in_front = true;
-        if (s >= lo && s <= hi + 0.02f) {
+        if (s >= lo && s <= hi + 0.02f && !plateau) {
           on_bar = true;
           across_sum += static_cast<float>(j);
           ++across_n;

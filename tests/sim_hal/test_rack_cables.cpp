@@ -284,6 +284,85 @@ void test_a_cable_over_a_rack_face_stands_on_no_track(void**) {
 
 }  // namespace
 
+// The found bar's largest extent along the world's y (its ends, in the
+// world frame).
+double largest_y_of_ends(const estimator::HandrailDetection& d, const Eigen::Isometry3d& T) {
+  double y_max = -1e9;
+  for (int e = 0; e < 2; ++e) y_max = std::fmax(y_max, (T * d.ends_cam[e].cast<double>()).y());
+  return y_max;
+}
+
+// A handrail-like cable that runs out of the view one way and, the other
+// way, up to a box 6 cm proud of the wall, whose top lies in the gap
+// window. The end walk used to run on along the box's top, whose far edge
+// then passed for the bar's end: a "handrail" as long as the cable and the
+// box together (7 of these 9 views). Across the walk a bar's raised run is
+// a bar's width wide; over the box it goes on for the box's width, and the
+// walk does not take it for the bar. The cable is now refused: the box's
+// raised ground past its front counts in the ramp test's drop. A handrail
+// ending 2.5 cm short of the same box never reaches over it either, and is
+// found, that end seen where it is, in all views but one: there, seen
+// across the gap, the box's side face rises right past the rail's end, and
+// the rail is refused as the cable is (RAMP_END; sim_hal/README.md,
+// "Session 31").
+void test_the_end_walk_does_not_run_on_over_a_box(void**) {
+  constexpr double kBoxStart_m = 0.05, kRailEnd_m = 0.025;
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = flat_wall_scene();
+  for (sim_hal::Scene* scene : {&cable_scene, &rail_scene}) {
+    scene->add_box(Eigen::Vector3d(0.03, kBoxStart_m + 0.15, 0.0), Eigen::Matrix3d::Identity(),
+                   Eigen::Vector3d(0.06, 0.30, 0.12));
+  }
+  cable_scene.add_cable(
+      {Eigen::Vector3d(0.068, -0.8, 0.0), Eigen::Vector3d(0.068, kBoxStart_m, 0.0)}, 0.02);
+  sim_hal::Handrail rail;
+  rail.kind = sim_hal::HandrailKind::kIss;
+  rail.axis = Eigen::Vector3d::UnitY();
+  rail.foot_center = Eigen::Vector3d(0.0, kRailEnd_m - 0.275, 0.0);  // the 0.55 m rail
+  rail_scene.add_handrail(rail);
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // along the image's rows
+  estimator::HandrailDetector detector(cfg);
+  Rendered r;
+  int cable_found = 0, onto_box = 0, rail_found = 0, rail_onto_box = 0, rail_end_right = 0,
+      frames = 0;
+  for (const double range_m : {0.60, 0.65, 0.70}) {
+    for (const double shift_m : {-0.03, 0.0, 0.03}) {
+      const Eigen::Isometry3d T = sim_hal::camera_pose(
+          Eigen::Vector3d(range_m, shift_m, 0.02), -Eigen::Vector3d::UnitX(),
+          Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0.0, shift_m, 0.02));
+      const std::size_t f = static_cast<std::size_t>(frames++);
+      render_scene(cable_scene, T, f, &r);
+      const estimator::HandrailDetection cable = detector.detect(r.cloud);
+      if (cable.status == estimator::DetectStatus::kFound) {
+        ++cable_found;
+        onto_box += largest_y_of_ends(cable, T) > kBoxStart_m + 0.03 ? 1 : 0;
+      }
+      render_scene(rail_scene, T, f, &r);
+      const estimator::HandrailDetection found = detector.detect(r.cloud);
+      if (found.status != estimator::DetectStatus::kFound) continue;
+      ++rail_found;
+      rail_onto_box += largest_y_of_ends(found, T) > kBoxStart_m + 0.03 ? 1 : 0;
+      const int toward_box = (T * found.ends_cam[1].cast<double>()).y() >
+                                     (T * found.ends_cam[0].cast<double>()).y()
+                                 ? 1
+                                 : 0;
+      rail_end_right += found.end_seen[toward_box] &&
+                                std::fabs(largest_y_of_ends(found, T) - kRailEnd_m) < 0.03
+                            ? 1
+                            : 0;
+    }
+  }
+  std::printf(
+      "cable up to a box: found %d of %d views, %d of them running on over the box; the rail "
+      "ending short of it: found %d (%d running on over the box), that end seen where it is "
+      "%d\n",
+      cable_found, frames, onto_box, rail_found, rail_onto_box, rail_end_right);
+  assert_int_equal(onto_box, 0);
+  assert_true(rail_found >= frames - 1);
+  assert_int_equal(rail_onto_box, 0);
+  assert_true(rail_end_right >= frames - 1);
+}
+
 int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_handrail_like_cable_is_refused_for_its_ramps),
@@ -291,6 +370,7 @@ int main() {
       cmocka_unit_test(test_a_ramp_the_image_edge_cuts_is_still_a_ramp),
       cmocka_unit_test(test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar),
       cmocka_unit_test(test_a_cable_over_a_rack_face_stands_on_no_track),
+      cmocka_unit_test(test_the_end_walk_does_not_run_on_over_a_box),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -63,10 +63,14 @@ bool line_follows_front(const Eigen::Vector3f& candidate_direction, const Center
 // (front_level_m, in the distances of ws.signed_distance_m). A handrail's
 // front holds to its leg, so its drop is at most the leg's length; a cable
 // that reaches a handrail's height comes down to the surface in a ramp,
-// whose low part, under the gap window, counts too.
+// whose low part, under the gap window, counts too. Past the inliers, a
+// step where the raised ground across the walk is wider than the bar (and,
+// seen obliquely, its leg: wall_normal, the normal of the wall the
+// distances are measured from, places the leg) is neither the bar nor its
+// end: the walk goes on over it without extending the bar.
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
-                 bool end_seen[2], float end_t_m[2], float end_drop_m[2] = nullptr,
+                 const Eigen::Vector3f& wall_normal, bool end_seen[2], float end_t_m[2], float end_drop_m[2] = nullptr,
                  float front_level_m = 0.0f);
 
 // Whether any of the pixels lies within margin_px of the image's border
