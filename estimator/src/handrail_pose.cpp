@@ -333,7 +333,8 @@ class RaisedAcrossWalk {
 
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
-                 const Eigen::Vector3f& wall_normal, bool end_seen[2], float end_t_m[2], float end_drop_m[2], float front_level_m) {
+                 const Eigen::Vector3f& wall_normal, bool end_seen[2], float end_t_m[2],
+                 float end_drop_m[2], float front_level_m) {
   end_seen[0] = end_seen[1] = false;
   end_t_m[0] = line.t_min_m;
   end_t_m[1] = line.t_max_m;
@@ -433,8 +434,7 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
       bool any_valid = false, on_bar = false, in_front = false, all_wall = true,
            raised_here = false;
       // Raised ground wider than a bar is neither the bar nor its end.
-      const bool plateau =
-          across_walk.past_inliers(centre) && across_walk.wider_than_bar(centre);
+      const bool plateau = across_walk.past_inliers(centre) && across_walk.wider_than_bar(centre);
       float across_sum = 0.0f;
       int across_n = 0, in_image = 0;
       for (int j = -2; j <= 2; ++j) {

@@ -327,9 +327,9 @@ void test_the_end_walk_does_not_run_on_over_a_box(void**) {
       frames = 0;
   for (const double range_m : {0.60, 0.65, 0.70}) {
     for (const double shift_m : {-0.03, 0.0, 0.03}) {
-      const Eigen::Isometry3d T = sim_hal::camera_pose(
-          Eigen::Vector3d(range_m, shift_m, 0.02), -Eigen::Vector3d::UnitX(),
-          Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0.0, shift_m, 0.02));
+      const Eigen::Isometry3d T =
+          sim_hal::camera_pose(Eigen::Vector3d(range_m, shift_m, 0.02), -Eigen::Vector3d::UnitX(),
+                               Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0.0, shift_m, 0.02));
       const std::size_t f = static_cast<std::size_t>(frames++);
       render_scene(cable_scene, T, f, &r);
       const estimator::HandrailDetection cable = detector.detect(r.cloud);
@@ -342,14 +342,14 @@ void test_the_end_walk_does_not_run_on_over_a_box(void**) {
       if (found.status != estimator::DetectStatus::kFound) continue;
       ++rail_found;
       rail_onto_box += largest_y_of_ends(found, T) > kBoxStart_m + 0.03 ? 1 : 0;
-      const int toward_box = (T * found.ends_cam[1].cast<double>()).y() >
-                                     (T * found.ends_cam[0].cast<double>()).y()
-                                 ? 1
-                                 : 0;
-      rail_end_right += found.end_seen[toward_box] &&
-                                std::fabs(largest_y_of_ends(found, T) - kRailEnd_m) < 0.03
-                            ? 1
-                            : 0;
+      const int toward_box =
+          (T * found.ends_cam[1].cast<double>()).y() > (T * found.ends_cam[0].cast<double>()).y()
+              ? 1
+              : 0;
+      rail_end_right +=
+          found.end_seen[toward_box] && std::fabs(largest_y_of_ends(found, T) - kRailEnd_m) < 0.03
+              ? 1
+              : 0;
     }
   }
   std::printf(

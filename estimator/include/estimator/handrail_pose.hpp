@@ -70,8 +70,8 @@ bool line_follows_front(const Eigen::Vector3f& candidate_direction, const Center
 // end: the walk goes on over it without extending the bar.
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
-                 const Eigen::Vector3f& wall_normal, bool end_seen[2], float end_t_m[2], float end_drop_m[2] = nullptr,
-                 float front_level_m = 0.0f);
+                 const Eigen::Vector3f& wall_normal, bool end_seen[2], float end_t_m[2],
+                 float end_drop_m[2] = nullptr, float front_level_m = 0.0f);
 
 // Whether any of the pixels lies within margin_px of the image's border
 // (a bar the image's edge cuts).
