@@ -632,7 +632,14 @@ def columbus_scene():
             COLUMBUS_DEV_RAILS if DEV_DIR is not None else COLUMBUS_RAILS):
         on_track(kind, MESHES[what][0] if kind == "iss_mesh" else what, face_point, normal, axis,
                  track_len)
-    return {"meshes": [{"path": COLUMBUS, "reflectivity": 0.55}], "handrails": rails, "boxes": tracks}
+    # The handrails the module's mesh models itself (mesh_handrails.py found
+    # them; assets/iss_modules/columbus_eu_lab.handrails.json): ground truth
+    # knows them, so that finding one is a handrail found, not a false
+    # detection.
+    with open(os.path.join(ASSETS, "iss_modules", "columbus_eu_lab.handrails.json")) as f:
+        modelled = json.load(f)["handrails"]
+    return {"meshes": [{"path": COLUMBUS, "reflectivity": 0.55, "handrails": modelled}],
+            "handrails": rails, "boxes": tracks}
 
 def columbus_approaches():
     poses = []

@@ -75,6 +75,36 @@ std::shared_ptr<const TriangleMesh> load_mesh(Reader& r, const JsonValue& at, Me
   return cached->second;
 }
 
+// A mesh's "handrails": [{"ends": [[x, y, z], [x, y, z]], "normal": [x, y, z]}, ...],
+// in the mesh's frame; the normal perpendicular to the centre line.
+bool read_mesh_handrails(Reader& r, const JsonValue& list, std::vector<MeshHandrail>* out) {
+  for (const JsonValue& h : list.items) {
+    if (!h.is_object()) return r.fail(h, "a mesh handrail must be an object");
+    r.unknown_keys(h, {"ends", "normal", "length_m", "bar_section_m"}, "a mesh handrail");
+    MeshHandrail rail;
+    const JsonValue* ends = r.member(h, "ends", JsonValue::Type::kArray, true);
+    if (!r.vec3(h, "normal", &rail.normal, true, true) || !ends) return false;
+    if (ends->items.size() != 2) return r.fail(*ends, "\"ends\" must be two points");
+    for (int e = 0; e < 2; ++e) {
+      const JsonValue& p = ends->items[static_cast<std::size_t>(e)];
+      if (!p.is_array() || p.items.size() != 3 || !p.items[0].is_number() ||
+          !p.items[1].is_number() || !p.items[2].is_number()) {
+        return r.fail(p, "each of \"ends\" must be [x, y, z]");
+      }
+      rail.ends[e] = Eigen::Vector3d(p.items[0].number, p.items[1].number, p.items[2].number);
+    }
+    const Eigen::Vector3d along = rail.ends[1] - rail.ends[0];
+    if (!(along.norm() >= 0.05 && along.norm() <= 2.0)) {
+      return r.fail(*ends, "\"ends\" must be 0.05 to 2 m apart");
+    }
+    if (std::fabs(along.normalized().dot(rail.normal)) > 1e-3) {
+      return r.fail(h, "\"normal\" must be perpendicular to the line between \"ends\"");
+    }
+    out->push_back(rail);
+  }
+  return r.ok();
+}
+
 void read_scene(Reader& r, const JsonValue& sc, Scene* scene, MeshCache* meshes) {
   r.unknown_keys(sc, {"walls", "rack_walls", "meshes", "handrails", "cables", "boxes", "pipes"},
                  "scene");
@@ -120,13 +150,21 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene, MeshCache* meshes)
       if (!r.ok()) return;
     }
   }
+  // The handrails meshes model, made the scene's after its own handrails
+  // (so that a scenario's first handrail stays its first).
+  struct PendingMeshHandrails {
+    std::size_t mesh_index = 0;
+    const JsonValue* list = nullptr;
+    std::vector<MeshHandrail> rails;
+  };
+  std::vector<PendingMeshHandrails> pending;
   if (const JsonValue* list = r.member(sc, "meshes", JsonValue::Type::kArray, false)) {
     for (const JsonValue& m : list->items) {
       if (!m.is_object()) {
         r.fail(m, "a mesh must be an object");
         return;
       }
-      r.unknown_keys(m, {"path", "position", "rpy_deg", "reflectivity"}, "a mesh");
+      r.unknown_keys(m, {"path", "position", "rpy_deg", "reflectivity", "handrails"}, "a mesh");
       Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
       SceneMesh placed;
       double refl = 0.5;
@@ -139,6 +177,14 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene, MeshCache* meshes)
       if (!placed.mesh) return;
       placed.R = rotation_rpy_deg(rpy);
       scene->add_mesh(placed, refl);
+      if (const JsonValue* rails = r.member(m, "handrails", JsonValue::Type::kArray, false)) {
+        PendingMeshHandrails p;
+        p.mesh_index = scene->meshes.size() - 1;
+        p.list = rails;
+        if (!read_mesh_handrails(r, *rails, &p.rails)) return;
+        pending.push_back(std::move(p));
+      }
+      if (!r.ok()) return;
     }
   }
   if (const JsonValue* rails = r.member(sc, "handrails", JsonValue::Type::kArray, false)) {
@@ -202,6 +248,18 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene, MeshCache* meshes)
         return;
       }
       scene->add_handrail(rail);
+    }
+  }
+  for (const PendingMeshHandrails& p : pending) {
+    const std::size_t first = scene->handrails.size();
+    const int empty = scene->add_mesh_handrails(p.mesh_index, p.rails);
+    if (empty >= 0) {
+      const std::size_t k = static_cast<std::size_t>(empty) - first;
+      r.fail(p.list->items[k], "no triangle of " + scene->meshes[p.mesh_index].path +
+                                   " lies on mesh handrail " + std::to_string(k) +
+                                   ": check its \"ends\" and \"normal\" (mesh_handrails.py "
+                                   "prints them)");
+      return;
     }
   }
   for (const char* key : {"cables", "pipes"}) {

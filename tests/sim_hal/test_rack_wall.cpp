@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -266,6 +267,9 @@ void test_every_shipped_handrail_stands_on_a_surface(void**) {
     assert_true(error.empty());
     ++scenarios;
     for (std::size_t k = 0; k < s.scene.handrails.size(); ++k) {
+      // The module's own (its mesh's feet sink a few mm into its faces):
+      // test_columbus_models_its_own_handrails measures them.
+      if (s.scene.handrails[k].kind == HandrailKind::kInModuleMesh) continue;
       std::string why;
       if (!feet_touch(s.scene, s.scene.handrails[k], &why)) {
         print_error("%s: handrail %zu: %s\n", name.c_str(), k, why.c_str());
@@ -314,6 +318,103 @@ void test_columbus_mesh_loads_with_its_documented_extent(void**) {
   assert_true(hits > static_cast<int>(pts.size()) / 2);
 }
 
+// The Columbus mesh models handrails of its own (a bar on two legs, feet
+// and plates); the shipped scenes list them (mesh_handrails.py), and they
+// become the scene's handrails: ground truth sees them, the camera sees
+// what it saw before.
+void test_columbus_models_its_own_handrails(void**) {
+  Scenario sc;
+  std::string error;
+  const std::string dir = source_dir() + "/sim_hal/scenarios/";
+  assert_true(load_scenario(dir + "columbus-module-views.json", &sc, &error));
+  // The scenario's own four rails first, then the module's 34.
+  assert_int_equal(sc.scene.handrails.size(), 4 + 34);
+  for (std::size_t k = 0; k < 4; ++k) {
+    assert_true(sc.scene.handrails[k].kind != HandrailKind::kInModuleMesh);
+  }
+  const Scene bare = without_handrails(sc.scene);
+  int iss_like = 0;
+  for (std::size_t k = 4; k < sc.scene.handrails.size(); ++k) {
+    const Handrail& h = sc.scene.handrails[k];
+    assert_int_equal(static_cast<int>(h.kind), static_cast<int>(HandrailKind::kInModuleMesh));
+    assert_string_equal(to_string(h.kind), "in_module_mesh");
+    assert_true(h.bar_length_m > 0.18 && h.bar_length_m < 1.08);
+    // Its centre line stands off the face behind it (most as an ISS
+    // handrail's, 6.1 to 6.3 cm), measured a quarter along the bar with the
+    // handrails taken away; its bar's front is its own surface.
+    const Eigen::Vector3d n = h.normal.normalized();
+    const Eigen::Vector3d p = h.end_point(0) + 0.25 * (h.end_point(1) - h.end_point(0));
+    Hit face, front;
+    assert_true(intersect_scene(bare, p + 0.1 * n, -n, 1e-4, 1.0, &face));
+    const double height_m = face.t - 0.1;
+    assert_true(intersect_scene(sc.scene, p + 0.1 * n, -n, 1e-4, 1.0, &front));
+    const double front_m = 0.1 - front.t;
+    print_message(
+        "module handrail %zu: %.3f m, centre line %.4f m off the face, front %.4f m "
+        "before it\n",
+        k, h.bar_length_m, height_m, front_m);
+    // The faces behind some are recessed (up to 9.2 cm), one on the end
+    // cone stands lower (3.1 cm); the sections are pointed hexagons.
+    assert_true(height_m >= 0.03 && height_m <= 0.095);
+    iss_like += height_m >= 0.055 && height_m <= 0.068;
+    assert_int_equal(sc.scene.surfaces[static_cast<std::size_t>(front.surface)].object_id,
+                     static_cast<int>(k));
+    assert_true(front_m >= 0.004 && front_m <= 0.014);
+  }
+  print_message("%d of 34 stand 5.5 to 6.8 cm off the face behind them\n", iss_like);
+  assert_true(iss_like >= 28);
+}
+
+// One of them, the 8.5 in rail on the starboard racks at y = 2.23, seen
+// from 0.63 m: in the truth whole, both ends in view; the frame the same
+// as with the mesh alone; a handrail placed where the mesh has none
+// refused with the entry named.
+void test_a_module_handrail_in_the_truth_and_the_frame_unchanged(void**) {
+  const std::string mesh = source_dir() + "/sim_hal/assets/iss_modules/columbus_eu_lab.dae";
+  const std::string head = R"({"name": "c", "scene": {"meshes": [{"path": ")" + mesh + "\"";
+  const std::string tail =
+      R"(}]}, "poses": [{"position": [0.35, 2.2257, -0.6055], "facing": [1, 0, 0]}]})";
+  const std::string rail =
+      R"(, "handrails": [{"ends": [[0.9813, 2.2257, -0.7059], [0.9813, 2.2257, -0.5046]],
+                          "normal": [-1, 0, 0]}])";
+  const Scenario with = load_text((head + rail + tail).c_str());
+  const Scenario without = load_text((head + tail).c_str());
+  assert_int_equal(with.scene.handrails.size(), 1);
+  assert_int_equal(without.scene.handrails.size(), 0);
+  const CameraIntrinsics cam = pico_flexx_intrinsics();
+  const FrameTruth t = compute_truth(with.scene, cam, with.T_world_cam[0], 0);
+  assert_int_equal(t.handrails.size(), 1);
+  assert_near(t.handrails[0].length_m, 0.2013, 1e-3);
+  assert_true(t.handrails[0].visible_fraction > 0.95);
+  assert_true(t.handrails[0].end_in_view[0] && t.handrails[0].end_in_view[1]);
+  assert_near(t.handrails[0].center_cam.z(), 0.9813 - 0.35, 1e-6);
+  assert_int_equal(compute_truth(without.scene, cam, without.T_world_cam[0], 0).handrails.size(),
+                   0);
+  DepthRenderer a(cam, all_off()), b(cam, all_off());
+  std::vector<hal::DepthPoint> pa, pb;
+  a.render(with.scene, with.T_world_cam[0], 1, 0, &pa);
+  b.render(without.scene, without.T_world_cam[0], 1, 0, &pb);
+  int bar_pixels = 0;
+  for (std::size_t i = 0; i < pa.size(); ++i) {
+    assert_true(std::fabs(a.true_range_m()[i] - b.true_range_m()[i]) < 1e-5f);
+    if (a.hit_surface()[i] >= 0) {
+      bar_pixels +=
+          with.scene.surfaces[static_cast<std::size_t>(a.hit_surface()[i])].object_id == 0;
+    }
+  }
+  print_message("%d pixels on the module's handrail\n", bar_pixels);
+  assert_true(bar_pixels > 300);
+  // Ends in the aisle, where the mesh has nothing.
+  const std::string stray =
+      R"(, "handrails": [{"ends": [[0.0, 3.0, -0.44], [0.0, 3.5, -0.44]], "normal": [1, 0, 0]}])";
+  Scenario bad;
+  std::string error;
+  assert_false(parse_scenario(head + stray + tail, "c.json", &bad, &error));
+  print_message("refused: %s\n", error.c_str());
+  assert_non_null(std::strstr(error.c_str(), "mesh handrail 0"));
+  assert_non_null(std::strstr(error.c_str(), "c.json:"));
+}
+
 }  // namespace
 
 int main() {
@@ -323,6 +424,8 @@ int main() {
       cmocka_unit_test(test_every_kind_and_length),
       cmocka_unit_test(test_every_shipped_handrail_stands_on_a_surface),
       cmocka_unit_test(test_columbus_mesh_loads_with_its_documented_extent),
+      cmocka_unit_test(test_columbus_models_its_own_handrails),
+      cmocka_unit_test(test_a_module_handrail_in_the_truth_and_the_frame_unchanged),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

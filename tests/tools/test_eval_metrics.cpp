@@ -1,9 +1,11 @@
 // hreval's statistics (tools/src/eval_metrics.cpp): the nearest-rank
 // percentile that issue #17's 95th-percentile figure is read with, and the
-// median beside it.
+// median beside it; which handrail a detection is scored against when
+// several are in view.
 #include <cmath>
 
 #include "cmocka_cpp.hpp"
+#include "estimator/handrail_pose.hpp"
 #include "eval_metrics.hpp"
 
 namespace {
@@ -39,11 +41,75 @@ void test_percentile_is_the_nearest_rank(void**) {
   assert_true(std::isnan(tools::Stats{}.median()));
 }
 
+// A handrail in the camera frame on a wall facing the camera: centre,
+// direction in the image, the whole bar in view.
+sim_hal::HandrailTruth rail(const Eigen::Vector3d& center, const Eigen::Vector3d& axis) {
+  sim_hal::HandrailTruth h;
+  h.center_cam = center;
+  h.visible_center_cam = center;
+  h.axis_cam = axis.normalized();
+  h.normal_cam = Eigen::Vector3d(0, 0, -1);
+  h.ends_cam[0] = center - 0.25 * h.axis_cam;
+  h.ends_cam[1] = center + 0.25 * h.axis_cam;
+  h.length_m = 0.5;
+  h.visible_fraction = 1.0;
+  h.end_in_view[0] = h.end_in_view[1] = true;
+  return h;
+}
+
+estimator::HandrailDetection found_at(const sim_hal::HandrailTruth& h, double offset_m) {
+  estimator::HandrailDetection d;
+  d.status = estimator::DetectStatus::kFound;
+  d.state = estimator::HandrailState::kBothEnds;
+  d.p_cam_center = (h.center_cam + Eigen::Vector3d(offset_m, 0, 0)).cast<float>();
+  d.R_cam_handrail =
+      estimator::handrail_frame(h.normal_cam.cast<float>(), h.axis_cam.cast<float>());
+  d.beam_length_m = 0.5f;
+  return d;
+}
+
+// Three handrails at 0.8 m: the target and one parallel to it 12 cm
+// beside (both along the image's y, the gripper's angle), and one across.
+void test_a_detection_is_scored_against_the_parallel_handrail_it_found(void**) {
+  sim_hal::FrameTruth truth;
+  truth.handrails = {rail({0.0, 0.0, 0.8}, {0, 1, 0}), rail({0.12, 0.0, 0.8}, {0, 1, 0}),
+                     rail({0.0, 0.2, 0.8}, {1, 0, 0})};
+  const int target = tools::target_handrail(truth, 0.0);
+  assert_int_equal(target, 0);
+  // The parallel one found: scored against it, correct, no false frame.
+  const estimator::HandrailDetection parallel = found_at(truth.handrails[1], 0.003);
+  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target), 1);
+  tools::Tally t;
+  t.add(parallel, truth, tools::scored_target(parallel, truth, 0.0, target),
+        tools::scored_target(parallel, truth, 0.0, target));
+  assert_int_equal(t.correct, 1);
+  assert_int_equal(t.reach_correct, 1);
+  assert_int_equal(t.false_found, 0);
+  // The one across the gripper found: the target stays, the frame is false.
+  const estimator::HandrailDetection across = found_at(truth.handrails[2], 0.0);
+  assert_int_equal(tools::scored_target(across, truth, 0.0, target), 0);
+  tools::Tally f;
+  f.add(across, truth, tools::scored_target(across, truth, 0.0, target),
+        tools::scored_target(across, truth, 0.0, target));
+  assert_int_equal(f.correct, 0);
+  assert_int_equal(f.false_found, 1);
+  // Between the two (6 cm from each): neither; nothing found: the target.
+  assert_int_equal(tools::scored_target(found_at(truth.handrails[0], 0.06), truth, 0.0, target), 0);
+  estimator::HandrailDetection none;
+  none.status = estimator::DetectStatus::kNoLine;
+  assert_int_equal(tools::scored_target(none, truth, 0.0, target), 0);
+  // However little of the parallel one shows (the image's edge cuts it),
+  // finding it is finding a handrail.
+  truth.handrails[1].visible_fraction = 0.1;
+  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target), 1);
+}
+
 }  // namespace
 
 int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_percentile_is_the_nearest_rank),
+      cmocka_unit_test(test_a_detection_is_scored_against_the_parallel_handrail_it_found),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

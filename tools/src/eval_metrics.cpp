@@ -45,6 +45,30 @@ int target_handrail_in_reach(const sim_hal::FrameTruth& truth, double gripper_an
   return best;
 }
 
+int scored_target(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth,
+                  double gripper_angle_rad, int target) {
+  if (target < 0 || d.status != estimator::DetectStatus::kFound) return target;
+  const auto angle_off = [&](const sim_hal::HandrailTruth& h) {
+    return std::fabs(std::atan2(std::fabs(h.axis_cam.x()), std::fabs(h.axis_cam.y())) -
+                     gripper_angle_rad);
+  };
+  // Parallel handrails tie with the target (within a degree).
+  const double window_rad = std::max(
+      M_PI / 4.0, angle_off(truth.handrails[static_cast<std::size_t>(target)]) + M_PI / 180.0);
+  int best = -1;
+  double best_mm = 0.0;
+  for (std::size_t k = 0; k < truth.handrails.size(); ++k) {
+    const sim_hal::HandrailTruth& h = truth.handrails[k];
+    if (angle_off(h) > window_rad) continue;
+    const FrameErrors e = score_detection(d, h);
+    if (is_correct(e) && (best < 0 || e.perpendicular_mm < best_mm)) {
+      best = static_cast<int>(k);
+      best_mm = e.perpendicular_mm;
+    }
+  }
+  return best >= 0 ? best : target;
+}
+
 FrameErrors score_detection(const estimator::HandrailDetection& d,
                             const sim_hal::HandrailTruth& t) {
   const Eigen::Matrix3f R_gt =

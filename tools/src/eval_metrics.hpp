@@ -32,6 +32,20 @@ int target_handrail_in_reach(const sim_hal::FrameTruth& truth, double gripper_an
 
 FrameErrors score_detection(const estimator::HandrailDetection& d, const sim_hal::HandrailTruth& t);
 
+// The handrail a detection is scored against. With several handrails in
+// view the gripper could take more than the one nearest its angle (the
+// Columbus module models three dozen of its own, many beside and parallel
+// to the scenario's rails). A detection that matches (is_correct) any
+// handrail in view, however little of it shows, that lies within 45 deg
+// of the gripper angle (the detector's own selection window) or no further
+// from it than the target (within a degree: parallel to it) is scored
+// against that one (the nearest, if several): it found a handrail the
+// gripper can take. The visibility rules say when a frame expects a
+// detection (`target`), not whether a detection is right. Otherwise
+// `target`: a detection of a handrail across the gripper stays false.
+int scored_target(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth,
+                  double gripper_angle_rad, int target);
+
 // A detection is correct when it lies within 5 cm of the target's centre
 // line and within 15 deg of its direction.
 bool is_correct(const FrameErrors& e);

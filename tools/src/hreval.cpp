@@ -345,18 +345,28 @@ int main(int argc, char** argv) {
         const estimator::HandrailDetection d[2] = {
             proposed.detect(cloud, estimator::Method::kProposed),
             basic.detect(cloud, estimator::Method::kBasic)};
-        const std::pair<std::string, std::string> group(out.surface, length_label(truth, target));
+        // Each method's detection scored against the handrail it found,
+        // where that is one the gripper could take as well as the target.
+        int targets[2], reach_targets[2];
+        for (int m = 0; m < 2; ++m) {
+          targets[m] = tools::scored_target(d[m], truth, cfg.gripper_angle_rad, target);
+          reach_targets[m] = tools::scored_target(d[m], truth, cfg.gripper_angle_rad, reach_target);
+        }
+        const std::pair<std::string, std::string> group(out.surface,
+                                                        length_label(truth, targets[0]));
         const tools::Tally& scored = out.method[0].all;
         const std::size_t false_before = scored.false_frames.size();
         const std::size_t missed_before = scored.missed_frames.size();
         for (int m = 0; m < 2; ++m) {
-          out.method[m].by_label[sc.pose_labels[f]].add(d[m], truth, target, reach_target);
-          out.method[m].all.add(d[m], truth, target, reach_target);
-          if (&out == &r) by_surface_length[m][group].add(d[m], truth, target, reach_target);
+          out.method[m].by_label[sc.pose_labels[f]].add(d[m], truth, targets[m], reach_targets[m]);
+          out.method[m].all.add(d[m], truth, targets[m], reach_targets[m]);
+          if (&out == &r) {
+            by_surface_length[m][group].add(d[m], truth, targets[m], reach_targets[m]);
+          }
         }
         const bool is_false = scored.false_frames.size() > false_before;
         if (&out == &r && (is_false || scored.missed_frames.size() > missed_before)) {
-          worst.consider(frame, truth, d[0], is_false, target, reach_target);
+          worst.consider(frame, truth, d[0], is_false, targets[0], reach_targets[0]);
         }
         progress.update(f + 1);
       }

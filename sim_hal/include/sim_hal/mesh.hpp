@@ -30,6 +30,8 @@ class TriangleMesh {
                  float* t, Eigen::Vector3f* normal) const;
 
   const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
+  // The triangles kept (degenerate ones dropped), in the hierarchy's order.
+  const std::vector<Eigen::Vector3i>& triangles() const { return triangles_; }
   std::size_t triangle_count() const { return triangles_.size(); }
   Eigen::Vector3d min_corner() const { return lo_; }
   Eigen::Vector3d max_corner() const { return hi_; }

@@ -13,8 +13,9 @@ namespace sim_hal {
 
 // kIss is the analytic rounded-rectangle bar; kIssMesh one of the real
 // handrail meshes; kModuleRail the plain box bar on box legs built into the
-// modules (about 1 m long).
-enum class HandrailKind : std::uint8_t { kPaperRound, kIss, kIssMesh, kModuleRail };
+// modules (about 1 m long); kInModuleMesh a handrail the module's own mesh
+// models (Columbus has some three dozen), its surfaces the mesh's triangles.
+enum class HandrailKind : std::uint8_t { kPaperRound, kIss, kIssMesh, kModuleRail, kInModuleMesh };
 const char* to_string(HandrailKind kind);
 
 // A bounded plane: centre, unit normal, in-plane unit axes u and v, half
@@ -86,8 +87,12 @@ struct Handrail {
   double reflectivity = 0.5;
   // kIssMesh only: the model (frame: x out of the wall, z along the rail,
   // origin on the wall at the footprint's centre) and its bar as measured.
+  // kInModuleMesh: the module mesh's triangles on this handrail.
   std::shared_ptr<const TriangleMesh> mesh;
   BarExtent mesh_bar{};
+  // kInModuleMesh only: the centre line's ends, world frame (end 0 at
+  // -axis), as the module's survey gives them.
+  Eigen::Vector3d given_ends[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   // Centre-line geometry per kind (the estimator's geometry config agrees,
   // except for kModuleRail, which it has no kind for).
   double center_offset_m() const;
@@ -164,6 +169,16 @@ struct SceneMesh {
   std::shared_ptr<const TriangleMesh> mesh;
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  std::int32_t surface = -1;  // its entry in Scene::surfaces (set by add_mesh)
+};
+
+// A handrail that a mesh models itself, in the mesh's own frame: its
+// centre line's ends (from the outer side of one leg to the outer side of
+// the other) and the normal of the face it stands on, toward the room
+// (sim_hal/scenarios/mesh_handrails.py finds them in a module mesh).
+struct MeshHandrail {
+  Eigen::Vector3d ends[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
 };
 
 struct Scene {
@@ -192,6 +207,15 @@ struct Scene {
   // backs and side walls as rectangles.
   void add_rack_wall(const RackWall& wall);
   void add_mesh(const SceneMesh& mesh, double reflectivity = 0.5);
+  // Makes the handrails that meshes[mesh_index] models handrails of the
+  // scene (kInModuleMesh, after those already added): the mesh's triangles
+  // lying wholly in a handrail's box (its centre line +-1 cm along, 2.6 cm
+  // either side across, 7.5 cm behind to 2.5 cm in front of it: the bar,
+  // legs, feet and plates) become that handrail's own surface, so that
+  // ground truth sees it; the rest stay the module's. What the camera sees
+  // does not change. Returns the index in `handrails` of the first one with
+  // no triangle on it (its ends are wrong), or -1 when every one has some.
+  int add_mesh_handrails(std::size_t mesh_index, const std::vector<MeshHandrail>& handrails);
 };
 
 struct Hit {
