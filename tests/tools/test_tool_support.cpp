@@ -1,6 +1,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -159,6 +160,23 @@ void test_image_text_and_png(void**) {
   for (int y = 0; y < 12; ++y)
     for (int x = 0; x < 40; ++x) lit += img.get(x, y).r > 0;
   assert_true(lit > 20);
+  // A line with an end a trillion pixels away (a point just in front of
+  // the camera, projected) is drawn where it crosses the picture, and only
+  // there; one wholly outside, or not finite, draws nothing.
+  tools::Image lines(40, 12);
+  lines.line(2.0, 6.0, 2.0e12, 6.0, {255, 0, 0});
+  lines.line(-5.0, -5.0, -1.0e12, 3.0, {0, 255, 0});
+  lines.line(NAN, 1.0, 3.0, 1.0, {0, 255, 0});
+  int red = 0, green = 0;
+  for (int y = 0; y < 12; ++y) {
+    for (int x = 0; x < 40; ++x) {
+      red += lines.get(x, y).r > 0;
+      green += lines.get(x, y).g > 0;
+    }
+  }
+  assert_int_equal(red, 38);  // x 2 .. 39 on row 6
+  assert_true(lines.get(39, 6).r > 0 && lines.get(1, 6).r == 0);
+  assert_int_equal(green, 0);
   std::string error;
   assert_false(img.write_png("/nonexistent/dir/x.png", &error));
   assert_string_equal(error.c_str(), "/nonexistent/dir/x.png: cannot create the PNG file");

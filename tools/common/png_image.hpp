@@ -17,6 +17,7 @@ class Image {
   int height() const { return height_; }
   void set(int x, int y, Rgb c);
   Rgb get(int x, int y) const { return pixels_[static_cast<std::size_t>(y * width_ + x)]; }
+  // Only the part inside the picture is drawn, however far the ends lie.
   void line(double x0, double y0, double x1, double y1, Rgb c, int thickness = 1);
   void rect(int x0, int y0, int x1, int y1, Rgb c);  // filled, inclusive
   void disc(double x, double y, double radius, Rgb c);
@@ -27,6 +28,7 @@ class Image {
   bool write_png(const std::string& path, std::string* error) const;
 
  private:
+  bool clip(double* x0, double* y0, double* x1, double* y1, double margin) const;
   int width_, height_;
   std::vector<Rgb> pixels_;
 };
