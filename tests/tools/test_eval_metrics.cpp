@@ -76,21 +76,25 @@ void test_a_detection_is_scored_against_the_parallel_handrail_it_found(void**) {
                      rail({0.0, 0.2, 0.8}, {1, 0, 0})};
   const int target = tools::target_handrail(truth, 0.0);
   assert_int_equal(target, 0);
+  // One frame tallied as hreval does: the detection scored against the
+  // handrail scored_target picks, for both the target and the in-reach one.
+  const auto tally = [&](const estimator::HandrailDetection& d) {
+    tools::Tally t;
+    const int scored = tools::scored_target(d, truth, 0.0, target);
+    t.add(d, truth, scored, scored);
+    return t;
+  };
   // The parallel one found: scored against it, correct, no false frame.
   const estimator::HandrailDetection parallel = found_at(truth.handrails[1], 0.003);
   assert_int_equal(tools::scored_target(parallel, truth, 0.0, target), 1);
-  tools::Tally t;
-  t.add(parallel, truth, tools::scored_target(parallel, truth, 0.0, target),
-        tools::scored_target(parallel, truth, 0.0, target));
+  const tools::Tally t = tally(parallel);
   assert_int_equal(t.correct, 1);
   assert_int_equal(t.reach_correct, 1);
   assert_int_equal(t.false_found, 0);
   // The one across the gripper found: the target stays, the frame is false.
   const estimator::HandrailDetection across = found_at(truth.handrails[2], 0.0);
   assert_int_equal(tools::scored_target(across, truth, 0.0, target), 0);
-  tools::Tally f;
-  f.add(across, truth, tools::scored_target(across, truth, 0.0, target),
-        tools::scored_target(across, truth, 0.0, target));
+  const tools::Tally f = tally(across);
   assert_int_equal(f.correct, 0);
   assert_int_equal(f.false_found, 1);
   // Between the two (6 cm from each): neither; nothing found: the target.

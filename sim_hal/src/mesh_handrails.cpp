@@ -1,0 +1,120 @@
+// The handrails a module mesh models itself (Scene::add_mesh_handrails):
+// their triangles split off the module into surfaces of their own.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "scene_hull.hpp"
+#include "sim_hal/scene.hpp"
+
+namespace sim_hal {
+
+namespace {
+
+// Whether a model-frame point lies in a modelled handrail's box (the
+// centre line from e0 along a, n toward the room, w across).
+bool in_handrail_box(const MeshHandrail& h, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d a = (h.ends[1] - h.ends[0]).normalized();
+  const Eigen::Vector3d n = h.normal.normalized();
+  const Eigen::Vector3d w = a.cross(n);
+  const Eigen::Vector3d v = p - h.ends[0];
+  const double along = v.dot(a), length = (h.ends[1] - h.ends[0]).norm();
+  const double out = v.dot(n);
+  return along >= -0.01 && along <= length + 0.01 && std::fabs(v.dot(w)) <= 0.026 &&
+         out >= -0.075 && out <= 0.025;
+}
+
+// A mesh of the given triangles of `from`, with only the vertices they use.
+std::shared_ptr<const TriangleMesh> sub_mesh(const TriangleMesh& from,
+                                             const std::vector<Eigen::Vector3i>& triangles) {
+  std::vector<std::int32_t> remap(from.vertices().size(), -1);
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> out;
+  out.reserve(triangles.size());
+  for (const Eigen::Vector3i& tri : triangles) {
+    Eigen::Vector3i t;
+    for (int k = 0; k < 3; ++k) {
+      std::int32_t& to = remap[static_cast<std::size_t>(tri[k])];
+      if (to < 0) {
+        to = static_cast<std::int32_t>(vertices.size());
+        vertices.push_back(from.vertices()[static_cast<std::size_t>(tri[k])]);
+      }
+      t[k] = to;
+    }
+    out.push_back(t);
+  }
+  return std::make_shared<const TriangleMesh>(std::move(vertices), std::move(out));
+}
+
+void set_mesh_surface(const std::shared_ptr<const TriangleMesh>& mesh, const Eigen::Matrix3d& R,
+                      const Eigen::Vector3d& t, Surface* s) {
+  s->mesh.mesh = mesh.get();
+  s->mesh.R = R;
+  s->mesh.t = t;
+  const Eigen::Vector3d lo = mesh->min_corner(), hi = mesh->max_corner();
+  s->bound_center = R * (0.5 * (lo + hi)) + t;
+  s->bound_radius = 0.5 * (hi - lo).norm();
+  detail::set_box_hull(s->bound_center, R, 0.5 * (hi - lo), s);
+}
+
+}  // namespace
+
+int Scene::add_mesh_handrails(std::size_t mesh_index, const std::vector<MeshHandrail>& rails) {
+  SceneMesh& m = meshes[mesh_index];
+  const TriangleMesh& whole = *m.mesh;
+  std::vector<std::vector<Eigen::Vector3i>> claimed(rails.size());
+  std::vector<Eigen::Vector3i> rest;
+  for (const Eigen::Vector3i& tri : whole.triangles()) {
+    std::size_t owner = rails.size();
+    for (std::size_t k = 0; k < rails.size() && owner == rails.size(); ++k) {
+      bool inside = true;
+      for (int c = 0; c < 3 && inside; ++c) {
+        inside = in_handrail_box(rails[k], whole.vertices()[static_cast<std::size_t>(tri[c])]);
+      }
+      if (inside) owner = k;
+    }
+    if (owner < rails.size()) {
+      claimed[owner].push_back(tri);
+    } else {
+      rest.push_back(tri);
+    }
+  }
+  int empty = -1;
+  const std::size_t first_id = handrails.size();
+  for (std::size_t k = 0; k < rails.size(); ++k) {
+    if (claimed[k].empty()) {
+      if (empty < 0) empty = static_cast<int>(first_id + k);
+      continue;
+    }
+    Handrail h{};
+    h.kind = HandrailKind::kInModuleMesh;
+    h.mesh = sub_mesh(whole, claimed[k]);
+    h.normal = (m.R * rails[k].normal).normalized();
+    for (int e = 0; e < 2; ++e) h.given_ends[e] = m.R * rails[k].ends[e] + m.t;
+    h.axis = (h.given_ends[1] - h.given_ends[0]).normalized();
+    h.bar_length_m = (h.given_ends[1] - h.given_ends[0]).norm();
+    // The foot: as deep behind the centre line as the claimed triangles
+    // reach (the feet's undersides, on the face).
+    double deepest = 0.0;
+    for (const Eigen::Vector3d& v : h.mesh->vertices()) {
+      deepest = std::max(deepest, -(v - rails[k].ends[0]).dot(rails[k].normal.normalized()));
+    }
+    h.foot_center = 0.5 * (h.given_ends[0] + h.given_ends[1]) - deepest * h.normal;
+    h.reflectivity = surfaces[static_cast<std::size_t>(m.surface)].reflectivity;
+    Surface s{};
+    s.kind = SurfaceKind::kMesh;
+    s.object_id = static_cast<std::int32_t>(handrails.size());
+    s.reflectivity = h.reflectivity;
+    set_mesh_surface(h.mesh, m.R, m.t, &s);
+    handrails.push_back(h);
+    surfaces.push_back(s);
+  }
+  if (empty >= 0) return empty;
+  m.mesh = sub_mesh(whole, rest);
+  set_mesh_surface(m.mesh, m.R, m.t, &surfaces[static_cast<std::size_t>(m.surface)]);
+  return -1;
+}
+
+}  // namespace sim_hal
