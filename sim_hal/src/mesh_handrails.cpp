@@ -22,7 +22,7 @@ bool in_handrail_box(const MeshHandrail& h, const Eigen::Vector3d& p) {
   const Eigen::Vector3d v = p - h.ends[0];
   const double along = v.dot(a), length = (h.ends[1] - h.ends[0]).norm();
   const double out = v.dot(n);
-  return along >= -0.01 && along <= length + 0.01 && std::fabs(v.dot(w)) <= 0.026 &&
+  return along >= -0.02 && along <= length + 0.02 && std::fabs(v.dot(w)) <= 0.026 &&
          out >= -0.075 && out <= 0.025;
 }
 
@@ -59,9 +59,25 @@ void set_mesh_surface(const std::shared_ptr<const TriangleMesh>& mesh, const Eig
   detail::set_box_hull(s->bound_center, R, 0.5 * (hi - lo), s);
 }
 
+// How deep behind its centre line a handrail's claimed triangles reach
+// (the feet's undersides, on the face); the model frame.
+double deepest_behind_m(const MeshHandrail& h, const TriangleMesh& whole,
+                        const std::vector<Eigen::Vector3i>& triangles) {
+  const Eigen::Vector3d n = h.normal.normalized();
+  double deepest = 0.0;
+  for (const Eigen::Vector3i& tri : triangles) {
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d& v = whole.vertices()[static_cast<std::size_t>(tri[c])];
+      deepest = std::max(deepest, -(v - h.ends[0]).dot(n));
+    }
+  }
+  return deepest;
+}
+
 }  // namespace
 
 int Scene::add_mesh_handrails(std::size_t mesh_index, const std::vector<MeshHandrail>& rails) {
+  if (mesh_index >= meshes.size() || meshes[mesh_index].surface < 0) return rails.empty() ? -1 : 0;
   SceneMesh& m = meshes[mesh_index];
   const TriangleMesh& whole = *m.mesh;
   std::vector<std::vector<Eigen::Vector3i>> claimed(rails.size());
@@ -81,13 +97,17 @@ int Scene::add_mesh_handrails(std::size_t mesh_index, const std::vector<MeshHand
       rest.push_back(tri);
     }
   }
-  int empty = -1;
-  const std::size_t first_id = handrails.size();
+  // Every one checked before the scene changes: each must hold triangles
+  // reaching a leg's length behind its centre line (its feet); one with
+  // none, or only the bar (its normal points into the wall), is refused.
+  std::vector<double> deepest(rails.size());
   for (std::size_t k = 0; k < rails.size(); ++k) {
-    if (claimed[k].empty()) {
-      if (empty < 0) empty = static_cast<int>(first_id + k);
-      continue;
+    deepest[k] = deepest_behind_m(rails[k], whole, claimed[k]);
+    if (claimed[k].empty() || deepest[k] < kMeshHandrailMinFootDepthM) {
+      return static_cast<int>(k);
     }
+  }
+  for (std::size_t k = 0; k < rails.size(); ++k) {
     Handrail h{};
     h.kind = HandrailKind::kInModuleMesh;
     h.mesh = sub_mesh(whole, claimed[k]);
@@ -95,13 +115,7 @@ int Scene::add_mesh_handrails(std::size_t mesh_index, const std::vector<MeshHand
     for (int e = 0; e < 2; ++e) h.given_ends[e] = m.R * rails[k].ends[e] + m.t;
     h.axis = (h.given_ends[1] - h.given_ends[0]).normalized();
     h.bar_length_m = (h.given_ends[1] - h.given_ends[0]).norm();
-    // The foot: as deep behind the centre line as the claimed triangles
-    // reach (the feet's undersides, on the face).
-    double deepest = 0.0;
-    for (const Eigen::Vector3d& v : h.mesh->vertices()) {
-      deepest = std::max(deepest, -(v - rails[k].ends[0]).dot(rails[k].normal.normalized()));
-    }
-    h.foot_center = 0.5 * (h.given_ends[0] + h.given_ends[1]) - deepest * h.normal;
+    h.foot_center = 0.5 * (h.given_ends[0] + h.given_ends[1]) - deepest[k] * h.normal;
     h.reflectivity = surfaces[static_cast<std::size_t>(m.surface)].reflectivity;
     Surface s{};
     s.kind = SurfaceKind::kMesh;
@@ -111,7 +125,6 @@ int Scene::add_mesh_handrails(std::size_t mesh_index, const std::vector<MeshHand
     handrails.push_back(h);
     surfaces.push_back(s);
   }
-  if (empty >= 0) return empty;
   m.mesh = sub_mesh(whole, rest);
   set_mesh_surface(m.mesh, m.R, m.t, &surfaces[static_cast<std::size_t>(m.surface)]);
   return -1;

@@ -251,14 +251,13 @@ void read_scene(Reader& r, const JsonValue& sc, Scene* scene, MeshCache* meshes)
     }
   }
   for (const PendingMeshHandrails& p : pending) {
-    const std::size_t first = scene->handrails.size();
-    const int empty = scene->add_mesh_handrails(p.mesh_index, p.rails);
-    if (empty >= 0) {
-      const std::size_t k = static_cast<std::size_t>(empty) - first;
-      r.fail(p.list->items[k], "no triangle of " + scene->meshes[p.mesh_index].path +
-                                   " lies on mesh handrail " + std::to_string(k) +
-                                   ": check its \"ends\" and \"normal\" (mesh_handrails.py "
-                                   "prints them)");
+    const int refused = scene->add_mesh_handrails(p.mesh_index, p.rails);
+    if (refused >= 0) {
+      const std::size_t k = static_cast<std::size_t>(refused);
+      r.fail(p.list->items[k], "mesh handrail " + std::to_string(k) + " has no legs of " +
+                                   scene->meshes[p.mesh_index].path +
+                                   " behind its centre line: check its \"ends\" and "
+                                   "\"normal\" (toward the room; mesh_handrails.py prints them)");
       return;
     }
   }

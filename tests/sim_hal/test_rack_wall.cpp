@@ -413,6 +413,34 @@ void test_a_module_handrail_in_the_truth_and_the_frame_unchanged(void**) {
   print_message("refused: %s\n", error.c_str());
   assert_non_null(std::strstr(error.c_str(), "mesh handrail 0"));
   assert_non_null(std::strstr(error.c_str(), "c.json:"));
+  // The same handrail with its normal into the wall: its box holds the bar
+  // but not its legs; refused, the second entry named, nothing taken from
+  // the module for the first.
+  const std::string reversed =
+      R"(, "handrails": [{"ends": [[0.9813, 2.2257, -0.7059], [0.9813, 2.2257, -0.5046]],
+                          "normal": [-1, 0, 0]},
+                         {"ends": [[0.9813, 2.2257, -0.7059], [0.9813, 2.2257, -0.5046]],
+                          "normal": [1, 0, 0]}])";
+  error.clear();
+  assert_false(parse_scenario(head + reversed + tail, "c.json", &bad, &error));
+  print_message("refused: %s\n", error.c_str());
+  assert_non_null(std::strstr(error.c_str(), "mesh handrail 1"));
+  Scene scene = without.scene;
+  const std::size_t triangles = scene.meshes[0].mesh->triangle_count();
+  MeshHandrail good, wrong;
+  good.ends[0] = wrong.ends[0] = Eigen::Vector3d(0.9813, 2.2257, -0.7059);
+  good.ends[1] = wrong.ends[1] = Eigen::Vector3d(0.9813, 2.2257, -0.5046);
+  good.normal = Eigen::Vector3d(-1, 0, 0);
+  wrong.normal = Eigen::Vector3d(1, 0, 0);
+  assert_int_equal(scene.add_mesh_handrails(0, {good, wrong}), 1);
+  assert_int_equal(scene.handrails.size(), 0);
+  assert_int_equal(scene.meshes[0].mesh->triangle_count(), triangles);
+  assert_int_equal(scene.add_mesh_handrails(0, {good}), -1);
+  assert_int_equal(scene.handrails.size(), 1);
+  assert_true(scene.meshes[0].mesh->triangle_count() < triangles);
+  print_message("its centre line %.4f m off its feet\n", scene.handrails[0].center_offset_m());
+  assert_true(scene.handrails[0].center_offset_m() > 0.055 &&
+              scene.handrails[0].center_offset_m() < 0.07);
 }
 
 }  // namespace

@@ -80,32 +80,45 @@ void test_a_detection_is_scored_against_the_parallel_handrail_it_found(void**) {
   // handrail scored_target picks, for both the target and the in-reach one.
   const auto tally = [&](const estimator::HandrailDetection& d) {
     tools::Tally t;
-    const int scored = tools::scored_target(d, truth, 0.0, target);
-    t.add(d, truth, scored, scored);
+    t.add(d, truth, tools::scored_target(d, truth, 0.0, target, false),
+          tools::scored_target(d, truth, 0.0, target, true));
     return t;
   };
   // The parallel one found: scored against it, correct, no false frame.
   const estimator::HandrailDetection parallel = found_at(truth.handrails[1], 0.003);
-  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target), 1);
+  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target, false), 1);
   const tools::Tally t = tally(parallel);
   assert_int_equal(t.correct, 1);
   assert_int_equal(t.reach_correct, 1);
   assert_int_equal(t.false_found, 0);
   // The one across the gripper found: the target stays, the frame is false.
   const estimator::HandrailDetection across = found_at(truth.handrails[2], 0.0);
-  assert_int_equal(tools::scored_target(across, truth, 0.0, target), 0);
+  assert_int_equal(tools::scored_target(across, truth, 0.0, target, false), 0);
   const tools::Tally f = tally(across);
   assert_int_equal(f.correct, 0);
   assert_int_equal(f.false_found, 1);
   // Between the two (6 cm from each): neither; nothing found: the target.
-  assert_int_equal(tools::scored_target(found_at(truth.handrails[0], 0.06), truth, 0.0, target), 0);
+  assert_int_equal(
+      tools::scored_target(found_at(truth.handrails[0], 0.06), truth, 0.0, target, false), 0);
   estimator::HandrailDetection none;
   none.status = estimator::DetectStatus::kNoLine;
-  assert_int_equal(tools::scored_target(none, truth, 0.0, target), 0);
+  assert_int_equal(tools::scored_target(none, truth, 0.0, target, false), 0);
   // However little of the parallel one shows (the image's edge cuts it),
-  // finding it is finding a handrail.
+  // finding it is finding a handrail; out of reach (its visible part 1.9 m
+  // away), it is not one in reach.
   truth.handrails[1].visible_fraction = 0.1;
-  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target), 1);
+  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target, false), 1);
+  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target, true), 1);
+  truth.handrails[1].visible_center_cam = Eigen::Vector3d(0.12, 0.0, 1.9);
+  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target, false), 1);
+  assert_int_equal(tools::scored_target(parallel, truth, 0.0, target, true), 0);
+  // Two it matches (the target and one 6 cm beside it, the detection 3.5
+  // cm from the first): the nearer.
+  sim_hal::FrameTruth two;
+  two.handrails = {rail({0.0, 0.0, 0.8}, {0, 1, 0}), rail({0.06, 0.0, 0.8}, {0, 1, 0})};
+  const estimator::HandrailDetection between = found_at(two.handrails[0], 0.035);
+  assert_int_equal(tools::scored_target(between, two, 0.0, 0, false), 1);
+  assert_int_equal(tools::scored_target(found_at(two.handrails[0], 0.02), two, 0.0, 0, false), 0);
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ int target_handrail_in_reach(const sim_hal::FrameTruth& truth, double gripper_an
   for (std::size_t k = 0; k < truth.handrails.size(); ++k) {
     const sim_hal::HandrailTruth& h = truth.handrails[k];
     const double range_m = h.visible_center_cam.norm();
-    if (h.visible_fraction < 0.35 || range_m < 0.25 || range_m > 1.5) continue;
+    if (h.visible_fraction < 0.35 || range_m < 0.25 || range_m > kReachMaxM) continue;
     const double psi = std::atan2(std::fabs(h.axis_cam.x()), std::fabs(h.axis_cam.y()));
     const double diff = std::fabs(psi - gripper_angle_rad);
     if (best < 0 || diff < best_diff) {
@@ -46,7 +46,7 @@ int target_handrail_in_reach(const sim_hal::FrameTruth& truth, double gripper_an
 }
 
 int scored_target(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth,
-                  double gripper_angle_rad, int target) {
+                  double gripper_angle_rad, int target, bool in_reach) {
   if (target < 0 || d.status != estimator::DetectStatus::kFound) return target;
   const auto angle_off = [&](const sim_hal::HandrailTruth& h) {
     return std::fabs(std::atan2(std::fabs(h.axis_cam.x()), std::fabs(h.axis_cam.y())) -
@@ -60,6 +60,7 @@ int scored_target(const estimator::HandrailDetection& d, const sim_hal::FrameTru
   for (std::size_t k = 0; k < truth.handrails.size(); ++k) {
     const sim_hal::HandrailTruth& h = truth.handrails[k];
     if (angle_off(h) > window_rad) continue;
+    if (in_reach && h.visible_center_cam.norm() > kReachMaxM) continue;
     const FrameErrors e = score_detection(d, h);
     if (is_correct(e) && (best < 0 || e.perpendicular_mm < best_mm)) {
       best = static_cast<int>(k);

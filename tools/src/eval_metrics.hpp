@@ -29,6 +29,8 @@ int target_handrail(const sim_hal::FrameTruth& truth, double gripper_angle_rad);
 // (nearer, the detector's wall fills the view; farther, the bar is a few
 // pixels); among several, the one nearest the gripper angle. -1 if none.
 int target_handrail_in_reach(const sim_hal::FrameTruth& truth, double gripper_angle_rad);
+// The far end of that reach: the visible part's middle this far away.
+constexpr double kReachMaxM = 1.5;
 
 FrameErrors score_detection(const estimator::HandrailDetection& d, const sim_hal::HandrailTruth& t);
 
@@ -41,10 +43,14 @@ FrameErrors score_detection(const estimator::HandrailDetection& d, const sim_hal
 // from it than the target (within a degree: parallel to it) is scored
 // against that one (the nearest, if several): it found a handrail the
 // gripper can take. The visibility rules say when a frame expects a
-// detection (`target`), not whether a detection is right. Otherwise
-// `target`: a detection of a handrail across the gripper stays false.
+// detection (`target`), not whether a detection is right; but for the
+// in-reach figures (`in_reach`, `target` from target_handrail_in_reach)
+// the handrail found must lie within reach too (its visible part's middle
+// no further than kReachMaxM; nearer than 0.25 m is within reach). Otherwise
+// `target`: a detection of a handrail across the gripper, or out of reach,
+// stays false.
 int scored_target(const estimator::HandrailDetection& d, const sim_hal::FrameTruth& truth,
-                  double gripper_angle_rad, int target);
+                  double gripper_angle_rad, int target, bool in_reach);
 
 // A detection is correct when it lies within 5 cm of the target's centre
 // line and within 15 deg of its direction.

@@ -349,11 +349,12 @@ int main(int argc, char** argv) {
         // where that is one the gripper could take as well as the target.
         int targets[2], reach_targets[2];
         for (int m = 0; m < 2; ++m) {
-          targets[m] = tools::scored_target(d[m], truth, cfg.gripper_angle_rad, target);
-          reach_targets[m] = tools::scored_target(d[m], truth, cfg.gripper_angle_rad, reach_target);
+          targets[m] = tools::scored_target(d[m], truth, cfg.gripper_angle_rad, target, false);
+          reach_targets[m] =
+              tools::scored_target(d[m], truth, cfg.gripper_angle_rad, reach_target, true);
         }
-        const std::pair<std::string, std::string> group(out.surface,
-                                                        length_label(truth, targets[0]));
+        // Grouped by the frame's target, whatever either method found.
+        const std::pair<std::string, std::string> group(out.surface, length_label(truth, target));
         const tools::Tally& scored = out.method[0].all;
         const std::size_t false_before = scored.false_frames.size();
         const std::size_t missed_before = scored.missed_frames.size();

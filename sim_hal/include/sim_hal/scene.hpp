@@ -176,6 +176,11 @@ struct SceneMesh {
 // centre line's ends (from the outer side of one leg to the outer side of
 // the other) and the normal of the face it stands on, toward the room
 // (sim_hal/scenarios/mesh_handrails.py finds them in a module mesh).
+// A modelled handrail's legs and feet reach at least this far behind its
+// centre line (an ISS handrail's centre line is 6.1 to 6.3 cm off its face;
+// Columbus's lowest, on the aft cone, 3.1 cm); its bar alone, half its
+// depth (1.5 cm), which is all a box turned the wrong way round holds.
+constexpr double kMeshHandrailMinFootDepthM = 0.025;
 struct MeshHandrail {
   Eigen::Vector3d ends[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
@@ -209,12 +214,16 @@ struct Scene {
   void add_mesh(const SceneMesh& mesh, double reflectivity = 0.5);
   // Makes the handrails that meshes[mesh_index] models handrails of the
   // scene (kInModuleMesh, after those already added): the mesh's triangles
-  // lying wholly in a handrail's box (its centre line +-1 cm along, 2.6 cm
+  // lying wholly in a handrail's box (its centre line +-2 cm along, 2.6 cm
   // either side across, 7.5 cm behind to 2.5 cm in front of it: the bar,
   // legs, feet and plates) become that handrail's own surface, so that
   // ground truth sees it; the rest stay the module's. What the camera sees
-  // does not change. Returns the index in `handrails` of the first one with
-  // no triangle on it (its ends are wrong), or -1 when every one has some.
+  // does not change. Each must hold triangles reaching at least
+  // kMeshHandrailMinFootDepthM behind its centre line (its legs and feet):
+  // returns the index in `handrails` (the argument) of the first that does
+  // not (its ends are wrong, or its normal points into the wall), with the
+  // scene unchanged; 0 when meshes[mesh_index] was not added by add_mesh;
+  // -1 when all were added.
   int add_mesh_handrails(std::size_t mesh_index, const std::vector<MeshHandrail>& handrails);
 };
 
