@@ -48,17 +48,6 @@ std::shared_ptr<const TriangleMesh> sub_mesh(const TriangleMesh& from,
   return std::make_shared<const TriangleMesh>(std::move(vertices), std::move(out));
 }
 
-void set_mesh_surface(const std::shared_ptr<const TriangleMesh>& mesh, const Eigen::Matrix3d& R,
-                      const Eigen::Vector3d& t, Surface* s) {
-  s->mesh.mesh = mesh.get();
-  s->mesh.R = R;
-  s->mesh.t = t;
-  const Eigen::Vector3d lo = mesh->min_corner(), hi = mesh->max_corner();
-  s->bound_center = R * (0.5 * (lo + hi)) + t;
-  s->bound_radius = 0.5 * (hi - lo).norm();
-  detail::set_box_hull(s->bound_center, R, 0.5 * (hi - lo), s);
-}
-
 // How deep behind its centre line a handrail's claimed triangles reach
 // (the feet's undersides, on the face); the model frame.
 double deepest_behind_m(const MeshHandrail& h, const TriangleMesh& whole,
@@ -121,12 +110,12 @@ int Scene::add_mesh_handrails(std::size_t mesh_index, const std::vector<MeshHand
     s.kind = SurfaceKind::kMesh;
     s.object_id = static_cast<std::int32_t>(handrails.size());
     s.reflectivity = h.reflectivity;
-    set_mesh_surface(h.mesh, m.R, m.t, &s);
+    detail::set_mesh_surface(h.mesh, m.R, m.t, &s);
     handrails.push_back(h);
     surfaces.push_back(s);
   }
   m.mesh = sub_mesh(whole, rest);
-  set_mesh_surface(m.mesh, m.R, m.t, &surfaces[static_cast<std::size_t>(m.surface)]);
+  detail::set_mesh_surface(m.mesh, m.R, m.t, &surfaces[static_cast<std::size_t>(m.surface)]);
   return -1;
 }
 

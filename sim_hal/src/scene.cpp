@@ -471,22 +471,26 @@ void Scene::add_rack_wall(const RackWall& w) {
   }
 }
 
+void detail::set_mesh_surface(const std::shared_ptr<const TriangleMesh>& mesh,
+                              const Eigen::Matrix3d& R, const Eigen::Vector3d& t, Surface* s) {
+  s->mesh.mesh = mesh.get();
+  s->mesh.R = R;
+  s->mesh.t = t;
+  const Eigen::Vector3d lo = mesh->min_corner(), hi = mesh->max_corner();
+  s->bound_center = R * (0.5 * (lo + hi)) + t;
+  s->bound_radius = 0.5 * (hi - lo).norm();
+  // The model's box as the hull: a camera inside a module sees it behind
+  // the image plane, and every tile keeps it.
+  set_box_hull(s->bound_center, R, 0.5 * (hi - lo), s);
+}
+
 void Scene::add_mesh(const SceneMesh& m, double reflectivity) {
   meshes.push_back(m);
   Surface s{};
   s.kind = SurfaceKind::kMesh;
   s.object_id = -1;
   s.reflectivity = reflectivity;
-  s.mesh.mesh = meshes.back().mesh.get();
-  s.mesh.R = m.R;
-  s.mesh.t = m.t;
-  const Eigen::Vector3d lo = m.mesh->min_corner(), hi = m.mesh->max_corner();
-  const Eigen::Vector3d center = m.R * (0.5 * (lo + hi)) + m.t;
-  s.bound_center = center;
-  s.bound_radius = 0.5 * (hi - lo).norm();
-  // The model's box as the hull: a camera inside a module sees it behind
-  // the image plane, and every tile keeps it.
-  set_box_hull(center, m.R, 0.5 * (hi - lo), &s);
+  detail::set_mesh_surface(meshes.back().mesh, m.R, m.t, &s);
   meshes.back().surface = static_cast<std::int32_t>(surfaces.size());
   surfaces.push_back(s);
 }
