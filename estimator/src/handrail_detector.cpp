@@ -212,6 +212,13 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   if (cfg_.track_beside && off_plane && !track_shows_beside(beside, cfg_)) {
     return LineVerdict::kNotOnTrack;
   }
+  // On the plane's own face among rack faces, the plane may be a face flush
+  // with the track's top: the track shows as a step on one side only. A bar
+  // with its mount's level running on at both sides lies over an open face
+  // (session 33).
+  if (cfg_.track_beside && !off_plane && rack_faces_ && open_face_both_sides(beside, cfg_)) {
+    return LineVerdict::kNotOnTrack;
+  }
   // Seen from its side, a bar shows its side face; a cable only its top.
   if (!profile_fits_bar(measure_bar_profile(ws_, wall_, *line, inliers), cfg_)) {
     return LineVerdict::kShallowProfile;
@@ -347,6 +354,7 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
   // they show.
   wall_ = plane.plane;
   dominant_ = plane.plane;
+  rack_faces_ = plane.faces_span_m >= kRackFaceStepM;
   out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
   keep_plane_pass(cloud, ws_);
   mounts_ = find_mount_hypotheses(cloud, cfg_, ws_);

@@ -73,6 +73,17 @@ bool track_shows_beside(const MountBeside& m, const DetectorConfig& cfg) {
   return true;
 }
 
+bool open_face_both_sides(const MountBeside& m, const DetectorConfig& cfg) {
+  for (int side = 0; side < 2; ++side) {
+    if (m.band_pixels[side] < cfg.track_beside_min_pixels) return false;
+    const float needed = cfg.mount_beside_min_fraction * static_cast<float>(m.band_pixels[side]);
+    if (!(static_cast<float>(m.at_level[side]) >= needed && m.at_level[side] > m.at_foot[side])) {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg) {
   bool judged = false;
   for (int side = 0; side < 2; ++side) {

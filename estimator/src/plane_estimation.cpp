@@ -220,7 +220,6 @@ constexpr int kFaceBins = 64;  // +-3.2 cm
 constexpr int kMaxFaces = 4;
 constexpr float kFaceHalfWidthM = 0.004f;
 constexpr float kFaceMinShare = 0.05f;  // of the points within the search, for a peak
-constexpr float kRackStepM = 0.01f;     // the least step between neighbouring rack faces
 
 bool pooled_faces_normal(const float* x, const float* y, const float* z, std::size_t m,
                          const Plane& through, Eigen::Vector3f* normal, float* faces_span_m) {
@@ -564,7 +563,7 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
   // differ by 1 to 5 cm): a flat wall's one face, its histogram split by
   // clutter or a slight tilt into peaks under a centimetre apart, has no
   // steps to tilt the broad fit, and that fit of every point stands there.
-  if (faces_span_m >= kRackStepM) {
+  if (faces_span_m >= kRackFaceStepM) {
     // Within a third of a degree the broad fit stands: on a flat wall it
     // is the least-squares fit of every point, finer than any face's.
     if (faces_normal.dot(best.normal) > kKeepBroadCos) faces_normal = best.normal;
@@ -586,6 +585,7 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
   result.found = true;
   result.plane = best;
   result.inliers = static_cast<std::uint32_t>(fraction * static_cast<float>(cloud.size()));
+  result.faces_span_m = faces_span_m;
   return result;
 }
 

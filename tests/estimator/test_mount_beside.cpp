@@ -123,6 +123,37 @@ void test_a_bar_on_a_track_shows_the_foot_beside_it(void**) {
   assert_true(track_shows_beside(split(nothing, 0.0f), cfg));
 }
 
+// On the dominant plane's own face among rack faces (open_face_both_sides):
+// the plane may be a neighbouring face flush with the track's top, so a
+// real handrail shows its mount's level on one side, and the track's own
+// face a step below (or a gap) on the other; a cable lying over a face has
+// that face at its mount's level on both sides.
+void test_an_open_face_on_both_sides_is_no_seat_track(void**) {
+  const DetectorConfig cfg;
+  auto split = [&](const BesideFrame& f, float mount_m) {
+    return measure_mount_beside(f.cloud, cfg, f.ws, f.wall, f.line, mount_m);
+  };
+  // The cable over the face: the face on both sides.
+  const BesideFrame face([](float x) { return bar_or(x, 0.0f); });
+  assert_true(open_face_both_sides(split(face, 0.0f), cfg));
+  // The rail on a track whose top is flush with the plane's face on one
+  // side, the track's own face 1.3 cm below on the other.
+  const BesideFrame flush_one_side([](float x) { return bar_or(x, x > 0.0f ? -0.013f : 0.0f); });
+  assert_false(open_face_both_sides(split(flush_one_side, 0.0f), cfg));
+  // ... or a gap 12 cm deep on the other.
+  const BesideFrame gap_one_side([](float x) { return bar_or(x, x > 0.0f ? -0.12f : 0.0f); });
+  assert_false(open_face_both_sides(split(gap_one_side, 0.0f), cfg));
+  // A side too thin to judge (seen obliquely, the bar hides it): no
+  // refusal on the other side alone.
+  const BesideFrame sliver([](float x) { return bar_or(x, x > 0.0135f ? NAN : 0.0f); });
+  const MountBeside m = split(sliver, 0.0f);
+  assert_true(m.band_pixels[0] < cfg.track_beside_min_pixels ||
+              m.band_pixels[1] < cfg.track_beside_min_pixels);
+  assert_false(open_face_both_sides(m, cfg));
+  // The track's foot on both sides: a bar on a track, not an open face.
+  assert_false(open_face_both_sides(split(face, 0.013f), cfg));
+}
+
 // The levels beside the bar, for the front-height test: what each side
 // shows, measured there rather than taken from the frame's surface peaks.
 void test_the_levels_beside_a_bar(void**) {
@@ -192,6 +223,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_the_mount_shows_beside_a_handrail),
       cmocka_unit_test(test_a_bar_on_a_track_shows_the_foot_beside_it),
+      cmocka_unit_test(test_an_open_face_on_both_sides_is_no_seat_track),
       cmocka_unit_test(test_no_mount_beside_is_no_handrail),
       cmocka_unit_test(test_the_levels_beside_a_bar),
       cmocka_unit_test(test_the_mount_under_a_bar_beside_it),

@@ -103,6 +103,7 @@ class HandrailDetector {
   Plane dominant_;
   PixelScale scale_;
   MountHypotheses mounts_;       // of the current frame
+  bool rack_faces_ = false;      // the current frame's plane found rack faces a step apart
   float search_mount_m_ = 0.0f;  // wall_'s offset from the dominant plane
   LineTrace trace_;
   bool trace_on_ = false;

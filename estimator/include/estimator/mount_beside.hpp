@@ -53,6 +53,16 @@ bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
 // on beside it at the mount's level.
 bool track_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
 
+// Whether the band reads as one unbroken face under the bar: both sides
+// judged (track_beside_min_pixels each), each with mount_beside_min_fraction
+// of its pixels on the mount's own level and more there than on a track's
+// foot. For a bar seated on the dominant plane's own face in a view of rack
+// faces (cfg.track_beside): a handrail's seat track shows a step beside it
+// on at least one side (the track's own face a step below, a gap or another
+// rack), even where the neighbouring face lies flush with the track's top
+// and is the plane; a cable lying over a face has that face on both sides.
+bool open_face_both_sides(const MountBeside& m, const DetectorConfig& cfg);
+
 // The surfaces right beside the bar, for the front-height test. The
 // surfaces in view (mount_surfaces.hpp) are the frame's histogram peaks,
 // measured from the dominant plane: a rack's 9 cm frame strip under the

@@ -11,10 +11,17 @@
 
 namespace estimator {
 
+// The least step between neighbouring rack faces (they differ by 1 to 5 cm).
+constexpr float kRackFaceStepM = 0.01f;
+
 struct PlaneEstimate {
   bool found = false;
   Plane plane;
   std::uint32_t inliers = 0;  // estimated from the refit's subsample
+  // How far apart the outermost faces found along the faces' shared normal
+  // lie (plane_faces_normal; 0 when off or none found): a rack's step
+  // (1 cm) or more says the view shows rack faces, not one flat wall.
+  float faces_span_m = 0.0f;
 };
 
 // The wall's input: the usable pixels (valid, within range) of a lattice
