@@ -63,14 +63,18 @@ MountBeside measure_mount_beside(const OrganizedCloud& cloud, const DetectorConf
 }
 
 bool track_shows_beside(const MountBeside& m, const DetectorConfig& cfg) {
+  bool level_runs_on = false, foot_shows = false;
   for (int side = 0; side < 2; ++side) {
     if (m.band_pixels[side] < cfg.track_beside_min_pixels) continue;
     const float needed = cfg.mount_beside_min_fraction * static_cast<float>(m.band_pixels[side]);
     if (static_cast<float>(m.at_level[side]) >= needed && m.at_level[side] > m.at_foot[side]) {
-      return false;
+      level_runs_on = true;
+    }
+    if (static_cast<float>(m.at_foot[side]) >= needed && m.at_foot[side] > m.at_level[side]) {
+      foot_shows = true;
     }
   }
-  return true;
+  return foot_shows || !level_runs_on;
 }
 
 bool open_face_both_sides(const MountBeside& m, const DetectorConfig& cfg) {

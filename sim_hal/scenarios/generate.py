@@ -2,7 +2,7 @@
 """Writes the shipped scenario files. The JSON files are committed; rerun
 this after changing it (python3 generate.py) and commit both.
 
-python3 generate.py --dev DIR writes a development set instead: the rack-wall
+python3 generate.py --dev DIR [--dev-offset N] writes a development set instead: the rack-wall
 scenarios with every layout drawn from other seeds (and other sensor noise),
 approaches to four other rails in Columbus (other rack edges, other
 lengths: COLUMBUS_DEV_RAILS), views along and across Columbus from other
@@ -17,13 +17,20 @@ import json
 import os
 import sys
 
-# --dev DIR: the development set (see above).
+# --dev DIR [--dev-offset N]: the development set (see above); N (default
+# 50000, a positive integer) is added to every seed, so another N draws
+# another development set of the same kinds of scene.
 DEV_DIR = None
 DEV_SEED_OFFSET = 50000
-if len(sys.argv) == 3 and sys.argv[1] == "--dev":
+USAGE = "usage: generate.py [--dev DIR [--dev-offset N]]"
+if len(sys.argv) in (3, 5) and sys.argv[1] == "--dev":
     DEV_DIR = os.path.abspath(sys.argv[2])
+    if len(sys.argv) == 5:
+        if sys.argv[3] != "--dev-offset" or not sys.argv[4].isdigit() or int(sys.argv[4]) <= 0:
+            sys.exit("generate.py: --dev-offset needs a positive integer, got %r\n%s" % (" ".join(sys.argv[3:]), USAGE))
+        DEV_SEED_OFFSET = int(sys.argv[4])
 elif len(sys.argv) != 1:
-    sys.exit("usage: generate.py [--dev DIR]")
+    sys.exit(USAGE)
 
 WALL = {"center": [0, 0, 0], "normal": [1, 0, 0], "up": [0, 0, 1], "size": [4.0, 2.5], "reflectivity": 0.6}
 

@@ -121,6 +121,26 @@ void test_a_bar_on_a_track_shows_the_foot_beside_it(void**) {
   // Nothing valid beside it: no evidence, no refusal.
   const BesideFrame nothing([](float x) { return std::fabs(x) < 0.01f ? 0.078f : NAN; });
   assert_true(track_shows_beside(split(nothing, 0.0f), cfg));
+  // A neighbouring face flush with the track's top on one side (1.3 cm
+  // above the track's face, 3 mm off the mount's level), the track's own
+  // face on the other (session 33): the level runs on where the
+  // neighbour is, the foot shows where the face is, and the bar stands on
+  // its track. The neighbour beginning 2 cm out on that side, the track's
+  // face between: still standing.
+  const BesideFrame flush([](float x) { return bar_or(x, x > 0.0f ? 0.016f : 0.0f); });
+  const MountBeside beside_flush = split(flush, 0.013f);
+  // (x > 0 is side 0: across the bar is its axis times the wall's normal.)
+  assert_true(beside_flush.at_level[0] > 20 && beside_flush.at_foot[1] > 20);
+  assert_true(track_shows_beside(beside_flush, cfg));
+  const BesideFrame flush_past_face([](float x) { return bar_or(x, x > 0.02f ? 0.016f : 0.0f); });
+  assert_true(track_shows_beside(split(flush_past_face, 0.013f), cfg));
+  // The foot must outnumber the level on its side: a few pixels of some
+  // face 1.3 cm lower among the level's are no track.
+  const BesideFrame level_with_foot_patch(
+      [](float x) { return bar_or(x, x < -0.045f ? 0.0f : 0.013f); });
+  const MountBeside patch = split(level_with_foot_patch, 0.013f);
+  assert_true(patch.at_foot[1] > 0 && patch.at_level[1] > patch.at_foot[1]);
+  assert_false(track_shows_beside(patch, cfg));
 }
 
 // On the dominant plane's own face among rack faces (open_face_both_sides):

@@ -123,7 +123,9 @@ struct DetectorConfig {
   // With plane_faces_normal (on its own it refuses real rails on close
   // approaches, where the broad plane tilts across faces and the levels
   // beside the bar come out wrong): development set's false frames without
-  // a handrail 52 -> 18 of 268 (session 30). Since session 33 it also
+  // a handrail 52 -> 18 of 268 (session 30). Since session 33 a side
+  // showing the track's foot lets a bar pass whose other side shows the
+  // mount's level (a neighbouring face flush with the track's top). It also
   // refuses a bar seated on the dominant plane's own face where the view
   // shows rack faces a step apart and both sides of the bar show the
   // mount's level (open_face_both_sides): 8 -> 2 of 204 on the development

@@ -46,11 +46,15 @@ bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
 // Whether the band reads as a bar on a seat track, for a bar seated on a
 // face other than the dominant plane (cfg.track_beside): false when a
 // judged side has mount_beside_min_fraction of its pixels on the mount's
-// own level, and more there than on a track's foot. The ISS
+// own level, and more there than on a track's foot, and no judged side
+// shows the foot so (that fraction, and more than on the level). The ISS
 // handrails on rack walls stand on seat tracks 2.6 cm wide and 1.3 cm
 // proud; past the track's edge lies the rack face a step lower, or a gap.
 // A handrail-like cable seated on the face under it has that face running
-// on beside it at the mount's level.
+// on beside it at the mount's level. A neighbouring face may lie flush
+// with the track's top (faces differ by 1 to 5 cm, a track stands 1.3 cm
+// proud) and run on at the mount's level on that side; the track's own
+// face then shows on the other (session 33).
 bool track_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
 
 // Whether the band reads as one unbroken face under the bar: both sides
