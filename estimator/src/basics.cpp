@@ -162,6 +162,8 @@ const char* to_string(LineVerdict verdict) {
       return "TOO_FAR";
     case LineVerdict::kNotOnTrack:
       return "NOT_ON_TRACK";
+    case LineVerdict::kNoTrackPastEnd:
+      return "NO_TRACK_PAST_END";
     case LineVerdict::kCrossesBar:
       return "CROSSES_BAR";
     case LineVerdict::kBeamLength:

@@ -12,6 +12,7 @@
 #include "estimator/handrail_types.hpp"
 #include "estimator/line_estimation.hpp"
 #include "estimator/mount_beside.hpp"
+#include "estimator/track_past_end.hpp"
 #include "estimator/mount_surfaces.hpp"
 #include "estimator/plane_estimation.hpp"
 
@@ -122,6 +123,7 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
 // heights (at 1.2 m the noise is near a centimetre).
 bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexList& inliers,
                                      CenterLine* line) const {
+  line->on_hidden_track = false;
   if (strict_mount_) {
     line->mount_offset_m = search_mount_m_;
     if (bar_front_height_test(cfg_, *line)) return true;
@@ -172,9 +174,12 @@ bool HandrailDetector::seat_on_mount(const OrganizedCloud& cloud, const IndexLis
     near_levels[near_count++] = level_m;
   }
   const MountHypotheses& in_view = strict_mount_ ? kNoSurfacesInView : mounts_;
-  if (!find_mount_under_bar(in_view, cfg_, front_m, tolerance, &mount_m, near_levels, near_count)) {
+  bool on_track = false;
+  if (!find_mount_under_bar(in_view, cfg_, front_m, tolerance, &mount_m, near_levels, near_count,
+                            &on_track)) {
     return false;
   }
+  line->on_hidden_track = on_track;
   line->point += (mount_m - search_mount_m_) * wall_.normal;
   line->front_height_m = front_m - mount_m;
   line->mount_offset_m = mount_m;
@@ -240,6 +245,14 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   for (int e = 0; e < 2; ++e) {
     const Eigen::Vector3f end_point = line->point + end_t[e] * line->axis;
     if (drop_m[e] > allowed_end_drop_m(cfg_, scale_, end_point.z())) return LineVerdict::kRampEnd;
+  }
+  // Seated on a track the bar hides, past a seen end that track must
+  // stand proud of the face beside it; a cable over a face, read as a bar
+  // on a hidden track, has the face running on there (session 33).
+  if (line->on_hidden_track &&
+      !track_runs_past_end(measure_track_past_end(cloud, scale_, ws_, wall_, *line, end_t), ends,
+                           cfg_)) {
+    return LineVerdict::kNoTrackPastEnd;
   }
   const Eigen::Vector3f visible_middle = line->point + 0.5f * (end_t[0] + end_t[1]) * line->axis;
   if (visible_middle.norm() > cfg_.max_find_range_m) return LineVerdict::kTooFar;

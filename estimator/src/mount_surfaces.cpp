@@ -215,7 +215,7 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
 
 bool find_mount_under_bar(const MountHypotheses& mounts, const DetectorConfig& cfg, float front_m,
                           float tolerance_m, float* mount_m, const float* near_levels,
-                          std::uint32_t near_count) {
+                          std::uint32_t near_count, bool* on_track_out) {
   const float expected_mount = front_m - bar_front_m(cfg);
   float best_error = tolerance_m;
   bool found = false, on_track = false;
@@ -242,6 +242,7 @@ bool find_mount_under_bar(const MountHypotheses& mounts, const DetectorConfig& c
   // here. A seat track on a deeper face may top out a few millimetres off
   // that face (faces differ by 1 to 5 cm, the track is 1.3 cm): that is a
   // mount of its own.
+  if (on_track_out != nullptr) *on_track_out = found && on_track;
   return found && (on_track || std::fabs(*mount_m) >= kSameMountM);
 }
 

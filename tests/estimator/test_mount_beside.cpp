@@ -11,6 +11,7 @@
 #include "estimator/mount_beside.hpp"
 #include "estimator/mount_surfaces.hpp"
 #include "estimator/plane_estimation.hpp"
+#include "estimator/track_past_end.hpp"
 
 using namespace estimator;
 
@@ -174,6 +175,39 @@ void test_an_open_face_on_both_sides_is_no_seat_track(void**) {
   assert_false(open_face_both_sides(split(face, 0.013f), cfg));
 }
 
+// The hidden track's verdict past a seen end (track_runs_past_end): the
+// strip under the centre line against its flanks.
+void test_a_hidden_track_stands_proud_past_the_end(void**) {
+  const DetectorConfig cfg;
+  const bool seen[2] = {true, false};
+  TrackPastEnd m;
+  m.strip_pixels[0] = 40;
+  m.flank_pixels[0][0] = m.flank_pixels[0][1] = 40;
+  // The face level with the strip on both sides: no track, refused.
+  m.strip_m[0] = 0.0f;
+  m.flank_m[0][0] = 0.001f;
+  m.flank_m[0][1] = -0.002f;
+  assert_false(track_runs_past_end(m, seen, cfg));
+  // The same past an end not seen (the image cuts it): nothing said.
+  const bool unseen[2] = {false, false};
+  assert_true(track_runs_past_end(m, unseen, cfg));
+  // A track's step (1.3 cm) over one flank, the other a face flush with
+  // its top: a track.
+  m.flank_m[0][1] = -0.013f;
+  assert_true(track_runs_past_end(m, seen, cfg));
+  // Less than half a step: the face, refused.
+  m.flank_m[0][1] = -0.006f;
+  assert_false(track_runs_past_end(m, seen, cfg));
+  // One flank too thin to judge and the other level: a flush neighbour may
+  // be all that shows; nothing said.
+  m.flank_pixels[0][1] = kPastEndMinPixels - 1;
+  assert_true(track_runs_past_end(m, seen, cfg));
+  // Too little strip: nothing said.
+  m.flank_pixels[0][1] = 40;
+  m.strip_pixels[0] = kPastEndMinPixels - 1;
+  assert_true(track_runs_past_end(m, seen, cfg));
+}
+
 // The levels beside the bar, for the front-height test: what each side
 // shows, measured there rather than taken from the frame's surface peaks.
 void test_the_levels_beside_a_bar(void**) {
@@ -244,6 +278,7 @@ int main() {
       cmocka_unit_test(test_the_mount_shows_beside_a_handrail),
       cmocka_unit_test(test_a_bar_on_a_track_shows_the_foot_beside_it),
       cmocka_unit_test(test_an_open_face_on_both_sides_is_no_seat_track),
+      cmocka_unit_test(test_a_hidden_track_stands_proud_past_the_end),
       cmocka_unit_test(test_no_mount_beside_is_no_handrail),
       cmocka_unit_test(test_the_levels_beside_a_bar),
       cmocka_unit_test(test_the_mount_under_a_bar_beside_it),

@@ -387,6 +387,74 @@ void test_a_cable_over_the_planes_own_face_among_rack_faces_is_refused(void**) {
   assert_int_equal(below_off_plane, 3);
 }
 
+// A handrail-like cable a track step higher than a handrail over a face:
+// its front stands where a bar's would on a seat track hidden under it
+// (seen face-on the track does not show beside a bar), and its end in
+// view drops straight down (no ramp: into a connector flush with the
+// face). Past that end the face runs on under where the track would be,
+// level with the face on both sides, and the cable is refused
+// (NO_TRACK_PAST_END, session 33); a detector that does not ask takes it.
+// The ISS handrail on a real track, the track running on 30 cm past its
+// end, seen the same way, is found.
+void test_a_hidden_track_must_run_on_past_the_end(void**) {
+  constexpr double kTrackProud_m = 0.013;
+  // The ISS bar's front 7.85 cm over its track, so the 2 cm cable's centre
+  // 1 cm below that over the face.
+  const double cable_centre_m = kTrackProud_m + 0.0785 - 0.01;
+  sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = flat_wall_scene();
+  cable_scene.add_cable(
+      {Eigen::Vector3d(cable_centre_m, -1.5, 0.0), Eigen::Vector3d(cable_centre_m, 0.1, 0.0)},
+      0.02);
+  rail_scene.add_box(Eigen::Vector3d(0.5 * kTrackProud_m, -0.2, 0.0), Eigen::Matrix3d::Identity(),
+                     Eigen::Vector3d(kTrackProud_m, 1.2, 0.026));
+  sim_hal::Handrail rail;
+  rail.kind = sim_hal::HandrailKind::kIss;
+  rail.axis = Eigen::Vector3d::UnitY();
+  rail.foot_center = Eigen::Vector3d(kTrackProud_m, -0.175, 0.0);  // its end at y 0.1
+  rail_scene.add_handrail(rail);
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  estimator::HandrailDetector detector(cfg);
+  detector.set_line_trace(true);
+  Rendered r;
+  int cable_found = 0, cable_refused = 0, rail_found = 0, rail_end_seen = 0, frames = 0;
+  for (std::size_t f = 0; f < 6; ++f) {
+    // Face-on within 6 deg, 0.6 to 0.7 m out, the end 5 to 15 cm right of
+    // the view's centre, a little above or below the bar.
+    const double k = static_cast<double>(f % 3), side = f < 3 ? 1.0 : -1.0;
+    const Eigen::Isometry3d T = sim_hal::camera_pose(
+        Eigen::Vector3d(0.6 + 0.05 * k, -0.05 * k, side * 0.03), -Eigen::Vector3d::UnitX(),
+        Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0.0, 0.0, 3.0 * k * side));
+    ++frames;
+    render_scene(cable_scene, T, f, &r);
+    const estimator::HandrailDetection c = detector.detect(r.cloud);
+    cable_found += c.status == estimator::DetectStatus::kFound ? 1 : 0;
+    // The trace says which test refused its lines: this one, for some.
+    const estimator::LineTrace& trace = detector.last_line_trace();
+    bool refused_here = false;
+    for (std::uint32_t e = 0; e < trace.count; ++e) {
+      refused_here =
+          refused_here || trace.entries[e].verdict == estimator::LineVerdict::kNoTrackPastEnd;
+    }
+    cable_refused += refused_here ? 1 : 0;
+    render_scene(rail_scene, T, f, &r);
+    const estimator::HandrailDetection d = detector.detect(r.cloud);
+    if (d.status == estimator::DetectStatus::kFound) {
+      ++rail_found;
+      rail_end_seen += d.state == estimator::HandrailState::kNoEnd ? 0 : 1;
+    }
+  }
+  std::printf(
+      "cable on a hidden track: found %d of %d (%d with a line refused for no track past its end); "
+      "the "
+      "rail on its track: %d of %d, %d with its end seen\n",
+      cable_found, frames, cable_refused, rail_found, frames, rail_end_seen);
+  assert_int_equal(cable_found, 0);
+  assert_true(cable_refused >= frames - 1);
+  assert_int_equal(rail_found, frames);
+  assert_true(rail_end_seen >= frames - 1);
+}
+
 // The found bar's largest extent along the world's y (its ends, in the
 // world frame).
 double largest_y_of_ends(const estimator::HandrailDetection& d, const Eigen::Isometry3d& T) {
@@ -478,6 +546,7 @@ int main() {
       cmocka_unit_test(test_a_cable_over_a_rack_face_stands_on_no_track),
       cmocka_unit_test(test_a_cable_over_the_planes_own_face_among_rack_faces_is_refused),
       cmocka_unit_test(test_the_end_walk_does_not_run_on_over_a_box),
+      cmocka_unit_test(test_a_hidden_track_must_run_on_past_the_end),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

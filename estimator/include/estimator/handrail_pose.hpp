@@ -22,6 +22,10 @@ struct CenterLine {
   // The mount surface found under the bar (seat_on_mount()): its distance
   // from the dominant plane along the normal.
   float mount_offset_m = 0.0f;
+  // Whether that mount is a seat track a step above a surface in view
+  // (not a surface itself): a track the bar hides, which past its ends
+  // must show (track_past_end.hpp).
+  bool on_hidden_track = false;
 };
 
 // Eq. 5: x = wall normal, z = line direction projected onto the wall,

@@ -42,6 +42,8 @@ enum class LineVerdict : std::uint8_t {
   kCrossesBar,      // the bar's front runs at an angle to the line (line_max_turn_deg)
   kNotOnTrack,      // on a face off the dominant plane, its mount's level runs on beside it
                     // (mount_beside.hpp)
+  kNoTrackPastEnd,  // seated on a hidden track, yet past a seen end the face runs on level
+                    // (track_past_end.hpp)
 };
 const char* to_string(LineVerdict verdict);
 
