@@ -12,9 +12,9 @@
 #include "estimator/handrail_types.hpp"
 #include "estimator/line_estimation.hpp"
 #include "estimator/mount_beside.hpp"
-#include "estimator/track_past_end.hpp"
 #include "estimator/mount_surfaces.hpp"
 #include "estimator/plane_estimation.hpp"
+#include "estimator/track_past_end.hpp"
 
 namespace estimator {
 namespace {
