@@ -249,7 +249,7 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // Seated on a track the bar hides, past a seen end that track must
   // stand proud of the face beside it; a cable over a face, read as a bar
   // on a hidden track, has the face running on there (session 33).
-  if (line->on_hidden_track &&
+  if (cfg_.track_beside && line->on_hidden_track &&
       !track_runs_past_end(measure_track_past_end(cloud, scale_, ws_, wall_, *line, end_t), ends,
                            cfg_)) {
     return LineVerdict::kNoTrackPastEnd;

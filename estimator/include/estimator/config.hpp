@@ -129,7 +129,8 @@ struct DetectorConfig {
   // refuses a bar seated on the dominant plane's own face where the view
   // shows rack faces a step apart and both sides of the bar show the
   // mount's level (open_face_both_sides): 8 -> 2 of 204 on the development
-  // set's rack walls.
+  // set's rack walls; and a bar seated on a seat track its width hides
+  // whose seen end shows no track past it (track_past_end.hpp).
   bool track_beside = true;
   // A side of the band judged for it needs this many sampled pixels: the
   // side behind a bar seen obliquely shows a sliver (3 to 7 sampled pixels

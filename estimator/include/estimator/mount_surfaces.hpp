@@ -65,8 +65,8 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
 // `near_levels` (count `near_count`, from the dominant plane) are surfaces
 // measured right beside the bar (mount_beside.hpp), judged like those in
 // view.
-// *on_track (when given) says whether the mount found is a seat track a
-// step above a surface rather than a surface itself.
+// *on_track_out (when given) says whether the mount found is a seat track
+// a step above a surface rather than a surface itself.
 bool find_mount_under_bar(const MountHypotheses& mounts, const DetectorConfig& cfg, float front_m,
                           float tolerance_m, float* mount_m, const float* near_levels = nullptr,
                           std::uint32_t near_count = 0, bool* on_track_out = nullptr);
