@@ -17,6 +17,23 @@ using racktest::rail_on_seat_track_scene;
 using racktest::render_scene;
 using racktest::Rendered;
 
+// The 0.55 m ISS handrail along the world's y (horizontal in these views),
+// its mounting footprint's centre at foot.
+void add_rail_along_y(sim_hal::Scene* scene, const Eigen::Vector3d& foot) {
+  sim_hal::Handrail rail;
+  rail.kind = sim_hal::HandrailKind::kIss;
+  rail.axis = Eigen::Vector3d::UnitY();
+  rail.foot_center = foot;
+  scene->add_handrail(rail);
+}
+
+// The detector's defaults, for bars horizontal in the image.
+estimator::DetectorConfig horizontal_bars_config() {
+  estimator::DetectorConfig cfg;
+  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);
+  return cfg;
+}
+
 // A handrail-like cable's frames: how often the detector takes it, how
 // often its best line is refused for `verdict`, and how often a detector
 // without that test takes it.
@@ -94,8 +111,7 @@ void test_handrail_like_cable_is_refused_for_its_ramps(void**) {
   rail.kind = sim_hal::HandrailKind::kIss;
   rail.axis = Eigen::Vector3d::UnitY();
   rail_scene.add_handrail(rail);
-  estimator::DetectorConfig cfg;
-  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  const estimator::DetectorConfig cfg = horizontal_bars_config();
   estimator::DetectorConfig no_ramp_test = cfg;
   no_ramp_test.end_drop_max_m = 1.0f;
   estimator::HandrailDetector detector(cfg), lenient(no_ramp_test);
@@ -125,8 +141,7 @@ void test_short_ramps_are_refused_and_a_seat_track_is_no_ramp(void**) {
   cable_scene.add_cable({Eigen::Vector3d(0.01, -0.28, 0.0), Eigen::Vector3d(0.07, -0.2, 0.0),
                          Eigen::Vector3d(0.07, 0.2, 0.0), Eigen::Vector3d(0.01, 0.28, 0.0)},
                         0.02);
-  estimator::DetectorConfig cfg;
-  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  const estimator::DetectorConfig cfg = horizontal_bars_config();
   estimator::HandrailDetector detector(cfg);
   Rendered r;
   int cable_found = 0, cable_found_straight_on = 0, ramp_refusals = 0, rail_found = 0, frames = 0;
@@ -173,8 +188,7 @@ void test_a_ramp_the_image_edge_cuts_is_still_a_ramp(void**) {
   cable_scene.add_cable({Eigen::Vector3d(0.07, -1.5, 0.0), Eigen::Vector3d(0.07, 0.2, 0.0),
                          Eigen::Vector3d(0.01, 0.35, 0.0)},
                         0.02);
-  estimator::DetectorConfig cfg;
-  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  const estimator::DetectorConfig cfg = horizontal_bars_config();
   estimator::DetectorConfig no_ramp_test = cfg;
   no_ramp_test.end_drop_max_m = 1.0f;
   estimator::HandrailDetector detector(cfg), lenient(no_ramp_test);
@@ -208,8 +222,7 @@ void test_a_ramp_the_image_edge_cuts_is_still_a_ramp(void**) {
 void test_a_cable_seen_from_its_side_is_too_shallow_for_a_bar(void**) {
   sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = rail_on_seat_track_scene();
   cable_scene.add_cable({Eigen::Vector3d(0.07, -1.5, 0.0), Eigen::Vector3d(0.07, 1.5, 0.0)}, 0.02);
-  estimator::DetectorConfig cfg;
-  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  const estimator::DetectorConfig cfg = horizontal_bars_config();
   estimator::DetectorConfig no_profile_test = cfg;
   no_profile_test.profile_min_spread_m = 0.0f;
   estimator::HandrailDetector detector(cfg), lenient(no_profile_test);
@@ -253,13 +266,8 @@ void test_a_cable_over_a_rack_face_stands_on_no_track(void**) {
       0.02);
   rail_scene.add_box(Eigen::Vector3d(kFaceProud_m + 0.5 * kTrackProud_m, 0.0, 0.0),
                      Eigen::Matrix3d::Identity(), Eigen::Vector3d(kTrackProud_m, 0.85, 0.026));
-  sim_hal::Handrail rail;
-  rail.kind = sim_hal::HandrailKind::kIss;
-  rail.axis = Eigen::Vector3d::UnitY();
-  rail.foot_center = Eigen::Vector3d(kFaceProud_m + kTrackProud_m, 0.0, 0.0);
-  rail_scene.add_handrail(rail);
-  estimator::DetectorConfig cfg;
-  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  add_rail_along_y(&rail_scene, Eigen::Vector3d(kFaceProud_m + kTrackProud_m, 0.0, 0.0));
+  const estimator::DetectorConfig cfg = horizontal_bars_config();
   estimator::DetectorConfig no_track_test = cfg;
   no_track_test.track_beside = false;
   estimator::HandrailDetector detector(cfg), lenient(no_track_test);
@@ -314,13 +322,8 @@ void test_a_cable_over_the_planes_own_face_among_rack_faces_is_refused(void**) {
                         0.02);
   rail_scene.add_box(Eigen::Vector3d(0.5 * kTrackProud_m, 0.0, 0.0), Eigen::Matrix3d::Identity(),
                      Eigen::Vector3d(kTrackProud_m, 0.85, 0.026));
-  sim_hal::Handrail rail;
-  rail.kind = sim_hal::HandrailKind::kIss;
-  rail.axis = Eigen::Vector3d::UnitY();
-  rail.foot_center = Eigen::Vector3d(kTrackProud_m, 0.0, 0.0);
-  rail_scene.add_handrail(rail);
-  estimator::DetectorConfig cfg;
-  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  add_rail_along_y(&rail_scene, Eigen::Vector3d(kTrackProud_m, 0.0, 0.0));
+  const estimator::DetectorConfig cfg = horizontal_bars_config();
   estimator::DetectorConfig no_track_test = cfg;
   no_track_test.track_beside = false;
   estimator::HandrailDetector detector(cfg), lenient(no_track_test);
@@ -407,13 +410,8 @@ void test_a_hidden_track_must_run_on_past_the_end(void**) {
       0.02);
   rail_scene.add_box(Eigen::Vector3d(0.5 * kTrackProud_m, -0.2, 0.0), Eigen::Matrix3d::Identity(),
                      Eigen::Vector3d(kTrackProud_m, 1.2, 0.026));
-  sim_hal::Handrail rail;
-  rail.kind = sim_hal::HandrailKind::kIss;
-  rail.axis = Eigen::Vector3d::UnitY();
-  rail.foot_center = Eigen::Vector3d(kTrackProud_m, -0.175, 0.0);  // its end at y 0.1
-  rail_scene.add_handrail(rail);
-  estimator::DetectorConfig cfg;
-  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // bars horizontal in the image
+  add_rail_along_y(&rail_scene, Eigen::Vector3d(kTrackProud_m, -0.175, 0.0));  // its end at y 0.1
+  const estimator::DetectorConfig cfg = horizontal_bars_config();
   estimator::HandrailDetector detector(cfg);
   detector.set_line_trace(true);
   Rendered r;
@@ -485,13 +483,8 @@ void test_the_end_walk_does_not_run_on_over_a_box(void**) {
   }
   cable_scene.add_cable(
       {Eigen::Vector3d(0.068, -0.8, 0.0), Eigen::Vector3d(0.068, kBoxStart_m, 0.0)}, 0.02);
-  sim_hal::Handrail rail;
-  rail.kind = sim_hal::HandrailKind::kIss;
-  rail.axis = Eigen::Vector3d::UnitY();
-  rail.foot_center = Eigen::Vector3d(0.0, kRailEnd_m - 0.275, 0.0);  // the 0.55 m rail
-  rail_scene.add_handrail(rail);
-  estimator::DetectorConfig cfg;
-  cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);  // along the image's rows
+  add_rail_along_y(&rail_scene, Eigen::Vector3d(0.0, kRailEnd_m - 0.275, 0.0));  // 0.55 m
+  const estimator::DetectorConfig cfg = horizontal_bars_config();  // along the image's rows
   estimator::HandrailDetector detector(cfg);
   Rendered r;
   int cable_found = 0, onto_box = 0, rail_found = 0, rail_onto_box = 0, rail_end_right = 0,
