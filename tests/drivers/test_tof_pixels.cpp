@@ -73,16 +73,20 @@ struct EdgeCounts {
   long valid = 0, off_surface = 0, flying = 0, inconsistent = 0;
 };
 
-sim_hal::Scene edge_scene() {
-  sim_hal::Scene scene = tof_rig::wall_scene(2.0);
-  scene.add_box(Eigen::Vector3d(-1.05, 1.0, 0.0), Eigen::Matrix3d::Identity(),
+// The box's edge runs through the image's centre, turned by roll_deg
+// about the optical axis; its face lies step_m in front of the wall.
+sim_hal::Scene edge_scene(double roll_deg = 0.0, double wall_m = 2.0, double step_m = 1.0) {
+  sim_hal::Scene scene = tof_rig::wall_scene(wall_m);
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(roll_deg * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const double face_m = wall_m - step_m;
+  scene.add_box(Eigen::Vector3d(-(face_m + 0.05), 0.0, 0.0) + R * Eigen::Vector3d(0.0, 1.0, 0.0), R,
                 Eigen::Vector3d(0.1, 2.0, 4.0), 0.6);
   return scene;
 }
 
 EdgeCounts edge_counts(Rig& rig, tof::Processor& processor, const tof_rig::UseCase& uc,
-                       bool filter_on) {
-  const sim_hal::Scene scene = edge_scene();
+                       const char* filters, const sim_hal::Scene& scene = edge_scene()) {
   EdgeCounts c;
   for (int f = 0; f < 10; ++f) {
     assert_true(rig.capture(scene, uc, static_cast<std::uint64_t>(f)));
@@ -100,9 +104,9 @@ EdgeCounts edge_counts(Rig& rig, tof::Processor& processor, const tof_rig::UseCa
     c.inconsistent += count_state(processor, tof::PixelState::kInconsistent);
   }
   std::printf(
-      "depth edge, %s, flying-pixel test %s, 10 frames: %ld valid, %ld flying, %ld inconsistent, "
+      "depth edge, %s, flying-pixel tests %s, 10 frames: %ld valid, %ld flying, %ld inconsistent, "
       "%ld off both surfaces\n",
-      uc.name, filter_on ? "on" : "off", c.valid, c.flying, c.inconsistent, c.off_surface);
+      uc.name, filters, c.valid, c.flying, c.inconsistent, c.off_surface);
   return c;
 }
 
@@ -116,22 +120,48 @@ void test_depth_edge_pixels_flagged(void**) {
   // other surface mixes by a share uniform in 0..0.5 (the edge's place
   // inside it): most rows' mixed pixel is flagged, and what is left is
   // mixed so little that it stays on its surface.
-  const EdgeCounts m9 = edge_counts(rig, filtered, tof_rig::kMode9_5fps, true);
+  const EdgeCounts m9 = edge_counts(rig, filtered, tof_rig::kMode9_5fps, "on");
   assert_true(m9.flying + m9.inconsistent >= 10 * 171 * 6 / 10);
   assert_true(m9.off_surface <= 10);
   // The unwrapping alone catches all but a few percent of them (mixed
   // nearly alike at both frequencies); the flying-pixel test the rest.
-  const EdgeCounts m9_unfiltered = edge_counts(rig, unfiltered, tof_rig::kMode9_5fps, false);
+  const EdgeCounts m9_unfiltered = edge_counts(rig, unfiltered, tof_rig::kMode9_5fps, "off");
   assert_true(m9_unfiltered.off_surface <= 10 * 171 / 20);
   assert_true(m9_unfiltered.inconsistent >= 10 * 171 * 6 / 10);
-  const EdgeCounts m5 = edge_counts(rig, filtered, tof_rig::kMode5_45fps, true);
+  const EdgeCounts m5 = edge_counts(rig, filtered, tof_rig::kMode5_45fps, "on");
   // One frequency has no consistency check: the flying-pixel test flags
   // most rows' mixed pixel; a few percent of mixed pixels close enough to
   // one neighbour pass it (the vendor's test has the same gap).
   assert_true(m5.flying >= 10 * 171 * 6 / 10);
   assert_true(m5.off_surface * 20 <= m5.flying);
-  const EdgeCounts m5_unfiltered = edge_counts(rig, unfiltered, tof_rig::kMode5_45fps, false);
+  const EdgeCounts m5_unfiltered = edge_counts(rig, unfiltered, tof_rig::kMode5_45fps, "off");
   assert_true(m5_unfiltered.off_surface >= 10 * m5.off_surface);
+}
+
+// The same edge turned 45 deg in the image, with a handrail's step (13 cm,
+// its front 0.8 m away): the mixed pixels of a diagonal edge lie two or
+// three together, and a mixed pixel with a mixed neighbour that agrees
+// with it passes the vendor's test. The second look drops those no valid
+// neighbour agrees with; the pixels it takes are the mixed ones, not the
+// surfaces'.
+void test_diagonal_edge_stranded_pixels_dropped(void**) {
+  Rig rig;
+  tof::ProcessingConfig vendor_only;
+  vendor_only.strand_filter = false;
+  tof::Processor both(Rig::read_back(rig.truth), tof::ProcessingConfig{});
+  tof::Processor vendor(Rig::read_back(rig.truth), vendor_only);
+  const sim_hal::Scene scene = edge_scene(45.0, 0.93, 0.13);
+  for (const tof_rig::UseCase& uc : {tof_rig::kMode9_5fps, tof_rig::kMode5_45fps}) {
+    const EdgeCounts with = edge_counts(rig, both, uc, "on", scene);
+    const EdgeCounts without = edge_counts(rig, vendor, uc, "vendor's only", scene);
+    std::printf("  second look: %ld -> %ld off both surfaces, %ld more flagged\n",
+                without.off_surface, with.off_surface, with.flying - without.flying);
+    assert_true(without.off_surface >= 20);
+    assert_true(with.off_surface * 3 <= without.off_surface * 2);
+    // What it flags beyond the vendor's test is mostly what lay off both
+    // surfaces (pixels mixed by under 5 cm count as on one).
+    assert_true(with.flying - without.flying <= 2 * (without.off_surface - with.off_surface));
+  }
 }
 
 // Seeded: the same seed and frame give the same raw bytes; another frame
@@ -158,6 +188,7 @@ int main() {
       cmocka_unit_test(test_dark_wall_is_dark),
       cmocka_unit_test(test_depth_edge_pixels_flagged),
       cmocka_unit_test(test_raw_frames_are_deterministic),
+      cmocka_unit_test(test_diagonal_edge_stranded_pixels_dropped),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

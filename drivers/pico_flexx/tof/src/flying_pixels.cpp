@@ -4,7 +4,11 @@
 // jumps to both its left and right (or both its upper and lower)
 // neighbours by more than a threshold that grows with distance, because
 // noise does. Decided on this frame's distances before any is dropped, so
-// the test does not feed on its own output.
+// the test does not feed on its own output. Where an edge's mixed pixels
+// lie two or three together (an edge seen obliquely, or running across
+// the rows), one of them may have a mixed neighbour that agrees with it
+// and so pass that test; a second look, on what the first left, drops a
+// pixel stranded between the two surfaces (strand_pass).
 #include <algorithm>
 #include <cmath>
 
@@ -55,6 +59,73 @@ void Processor::flying_pixel_pass() {
       if (flying_one(row * w + col)) state_[row * w + col] = PixelState::kFlying;
     }
   }
+  if (config_.strand_filter) strand_pass();
+}
+
+// A pixel the first test left valid but that no valid neighbour (left,
+// right, up, down) agrees with, beside a pixel of mixed returns (flagged
+// flying, or inconsistent between the frequencies) or a jump, lies on
+// neither surface of the edge. Decided on the first test's states only: a
+// row's verdicts are applied once the next row has been decided, so no
+// verdict of this pass feeds another. Pixels with no evidence of an edge
+// around them (only dark or saturated neighbours) are left alone.
+void Processor::strand_pass() {
+  static_assert(sizeof(PixelState) == 1, "states are read four bytes at a time");
+  const float* r = range_m_.get();
+  const PixelState* st = state_.get();
+  constexpr int w = static_cast<int>(kWidthPx), h = static_cast<int>(kHeightPx);
+  constexpr int kValid = static_cast<int>(PixelState::kValid),
+                kFlying = static_cast<int>(PixelState::kFlying),
+                kInconsistent = static_cast<int>(PixelState::kInconsistent);
+  std::uint8_t stranded[2][kWidthPx] = {};
+  auto strand_one = [&](int i) {
+    if (st[i] != PixelState::kValid) return false;
+    const float ri = r[i],
+                th = std::min(0.14f, std::max(0.018f, 0.018f + (ri - 1.0f) * (0.122f / 3.5f)));
+    bool agrees = false, edge = false;
+    for (const int j : {i - 1, i + 1, i - w, i + w}) {
+      if (st[j] == PixelState::kValid) {
+        const bool jump = std::fabs(ri - r[j]) > th;
+        agrees = agrees || !jump;
+        edge = edge || jump;
+      } else {
+        edge = edge || st[j] == PixelState::kFlying || st[j] == PixelState::kInconsistent;
+      }
+    }
+    return edge && !agrees;
+  };
+  auto apply_row = [&](int row) {
+    const std::uint8_t* flags = stranded[row & 1];
+    for (int col = 1; col < w - 1; ++col) {
+      if (flags[col]) state_[row * w + col] = PixelState::kFlying;
+    }
+  };
+  for (int row = 1; row < h - 1; ++row) {
+    std::uint8_t* flags = stranded[row & 1];
+    int col = 1;
+    for (; col + 4 <= w - 1; col += 4) {
+      const int i = row * w + col;
+      const Ints4 valid = v4::load_bytes(st + i) == kValid;
+      const Floats4 ri = v4::load(r + i), th = flying_threshold_m(ri);
+      Ints4 agrees = Ints4{0, 0, 0, 0}, edge = Ints4{0, 0, 0, 0};
+      auto look_at = [&](int offset) {
+        const Ints4 sn = v4::load_bytes(st + i + offset);
+        const Ints4 present = sn == kValid;
+        const Ints4 jump = v4::abs4(ri - v4::load(r + i + offset)) > th;
+        agrees |= present & ~jump;
+        edge |= (present & jump) | (sn == kFlying) | (sn == kInconsistent);
+      };
+      look_at(-1);
+      look_at(1);
+      look_at(-w);
+      look_at(w);
+      const Ints4 out = valid & edge & ~agrees;
+      for (int k = 0; k < 4; ++k) flags[col + k] = out[k] != 0;
+    }
+    for (; col < w - 1; ++col) flags[col] = strand_one(row * w + col);
+    if (row > 1) apply_row(row - 1);
+  }
+  apply_row(h - 2);
 }
 
 void Processor::write_points() {

@@ -33,6 +33,14 @@ inline Floats4 load_samples(const std::uint16_t* p) {
   return __builtin_convertvector(v, Floats4);
 }
 
+// Four one-byte codes (the pixels' states) as integers.
+inline Ints4 load_bytes(const void* p) {
+  typedef std::uint8_t U8x4 __attribute__((vector_size(4)));
+  U8x4 v;
+  std::memcpy(&v, p, sizeof v);
+  return __builtin_convertvector(v, Ints4);
+}
+
 inline Floats4 min4(Floats4 a, Floats4 b) {
   return a < b ? a : b;
 }

@@ -43,6 +43,10 @@ struct ProcessingConfig {
   // The vendor's flying-pixel test (a jump to both horizontal or both
   // vertical neighbours).
   bool flying_filter = true;
+  // With it, a second look at what that test left: a pixel no valid
+  // neighbour agrees with, beside mixed returns or a jump, is dropped as
+  // flying too (an edge's mixed pixels two or three together).
+  bool strand_filter = true;
 };
 
 enum class ProcessStatus : std::uint8_t {
@@ -104,6 +108,7 @@ class Processor {
   void compute_rays(const Calibration& calibration);
   void phase_pass(const RawFrame& raw, float temperature_offset_m);
   void flying_pixel_pass();
+  void strand_pass();
   void write_points();
 
   ProcessingConfig config_;
