@@ -95,7 +95,11 @@ const char* validate(const DetectorConfig& c) {
   if (c.max_mount_hypotheses == 0 || c.max_mount_hypotheses > kMaxMountHypotheses) {
     return "max_mount_hypotheses";
   }
-  if (c.front_peak_mounts > kMaxMountHypotheses - c.max_mount_hypotheses) {
+  if (c.max_mount_hypotheses_bay < c.max_mount_hypotheses ||
+      c.max_mount_hypotheses_bay > kMaxMountHypotheses) {
+    return "max_mount_hypotheses_bay";
+  }
+  if (c.front_peak_mounts > kMaxMountHypotheses - c.max_mount_hypotheses_bay) {
     return "front_peak_mounts";
   }
   if (!(c.line_max_turn_deg > 0.0f && c.line_max_turn_deg <= 90.0f)) return "line_max_turn_deg";

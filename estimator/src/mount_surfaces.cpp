@@ -194,7 +194,11 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
   const auto front_pixels = [&](float mount_m) {
     return h.sum(mount_m + front - kFrontWindowM, mount_m + front + kFrontWindowM);
   };
-  const std::uint32_t capacity = cfg.max_mount_hypotheses;
+  // A surface beyond the plane's own mount range lies in the bay's range:
+  // the plane is the back of an empty bay.
+  bool bay_view = false;
+  for (std::uint32_t p = 0; p < peaks; ++p) bay_view |= peak_m[p] > cfg.mount_search_m;
+  const std::uint32_t capacity = bay_view ? cfg.max_mount_hypotheses_bay : cfg.max_mount_hypotheses;
   MountHypotheses out;
   out.dominant_front_pixels = front_pixels(0.0f);
   out.surface_count = peaks;

@@ -115,6 +115,52 @@ void test_rack_faces_in_front_of_an_empty_bay_are_mounts(void**) {
   assert_false(has_surface(find_mount_hypotheses(f.cloud, no_bay, f.ws), face));
 }
 
+// A bay view with faces at a bar front's height over other faces (the
+// development set's `dev-rack-approach-vertical-8-5`, third offset, on the
+// raw path): a face standing 7.85 cm over another gives that one's mount
+// more front pixels than the track the handrail stands on, so ranked by
+// front pixels the track comes fourth. Three searches missed it; in a bay
+// view five are made.
+void test_a_bay_view_searches_past_faces_at_a_bar_fronts_height(void**) {
+  const float face_a = 0.26f, face_c = 0.30f, track = face_a + kFront + 0.013f;
+  const DistanceFrame f({{0.0f, 0.3f},
+                         {face_a, 0.1f},
+                         {face_a + kFront, 0.1f},  // over face a
+                         {0.28f, 0.06f},
+                         {0.28f + 0.013f + kFront, 0.08f},  // over a track's top on 0.28
+                         {face_c, 0.05f},
+                         {face_c + kFront, 0.05f},  // over face c
+                         {track, 0.02f},
+                         {track + kFront, 0.03f}});  // the bar, on a track on a + kFront
+  const DetectorConfig cfg;
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_true(has_surface(m, track));
+  assert_true(m.count > cfg.max_mount_hypotheses);
+  assert_true(has_mount(m, track));
+  // The old budget, three mounts: the distractors fill it.
+  DetectorConfig three = cfg;
+  three.max_mount_hypotheses_bay = cfg.max_mount_hypotheses;
+  const MountHypotheses m3 = find_mount_hypotheses(f.cloud, three, f.ws);
+  assert_false(has_mount(m3, track));
+  // Off the bay the budget is the plain one: a rack wall's view with more
+  // than three mounts on offer (faces 4 and 2 cm back with something at a
+  // bar front's height over each, a track on the plane's face) searches
+  // three of them, as before.
+  const DistanceFrame wall({{0.0f, 0.4f},
+                            {-0.04f, 0.1f},
+                            {-0.04f + kFront, 0.05f},
+                            {-0.02f, 0.1f},
+                            {-0.02f + kFront, 0.04f},
+                            {0.013f, 0.04f},
+                            {0.013f + kFront, 0.03f}});
+  const MountHypotheses on_wall = find_mount_hypotheses(wall.cloud, cfg, wall.ws);
+  assert_int_equal(on_wall.count - on_wall.front_peak_count, cfg.max_mount_hypotheses);
+  DetectorConfig five = cfg;
+  five.max_mount_hypotheses = 5;
+  const MountHypotheses more = find_mount_hypotheses(wall.cloud, five, wall.ws);
+  assert_true(more.count - more.front_peak_count > cfg.max_mount_hypotheses);
+}
+
 void test_no_bar_anywhere_leaves_the_plane(void**) {
   const DistanceFrame f({{0.0f, 0.7f}, {-0.02f, 0.2f}});
   const DetectorConfig cfg;
@@ -414,8 +460,13 @@ void test_bad_mount_and_type_settings_are_named(void**) {
   cfg.handrail_type_count = kMaxHandrailTypes + 1;
   assert_string_equal(validate(cfg), "handrail_types");
   cfg = DetectorConfig{};
-  cfg.front_peak_mounts = kMaxMountHypotheses - cfg.max_mount_hypotheses + 1;
+  cfg.front_peak_mounts = kMaxMountHypotheses - cfg.max_mount_hypotheses_bay + 1;
   assert_string_equal(validate(cfg), "front_peak_mounts");
+  cfg = DetectorConfig{};
+  cfg.max_mount_hypotheses_bay = cfg.max_mount_hypotheses - 1;
+  assert_string_equal(validate(cfg), "max_mount_hypotheses_bay");
+  cfg.max_mount_hypotheses_bay = kMaxMountHypotheses + 1;
+  assert_string_equal(validate(cfg), "max_mount_hypotheses_bay");
   cfg = DetectorConfig{};
   cfg.profile_min_obliquity_deg = 95.0f;
   assert_string_equal(validate(cfg), "profile_min_obliquity_deg");
@@ -450,6 +501,7 @@ int main() {
       cmocka_unit_test(test_surfaces_of_a_rack_wall),
       cmocka_unit_test(test_surfaces_too_far_from_the_plane_are_not_mounts),
       cmocka_unit_test(test_rack_faces_in_front_of_an_empty_bay_are_mounts),
+      cmocka_unit_test(test_a_bay_view_searches_past_faces_at_a_bar_fronts_height),
       cmocka_unit_test(test_no_bar_anywhere_leaves_the_plane),
       cmocka_unit_test(test_a_small_surface_is_no_surface),
       cmocka_unit_test(test_a_face_too_small_for_a_peak_is_found_under_its_bar),

@@ -96,10 +96,17 @@ struct DetectorConfig {
   float mount_step_m = 0.013f;
   float mount_min_fraction = 0.01f;  // of the valid pixels, for a surface peak
   std::uint32_t max_mount_hypotheses = 3;
+  // In a view of an empty bay (a surface peak in the bay's range) the
+  // faces in front of the back each offer a mount and a track on it, and a
+  // face standing a bar front's height over another face gives that one's
+  // mount the most front pixels: the ranking is no guide there, so more of
+  // them are searched (session 34). At least max_mount_hypotheses.
+  std::uint32_t max_mount_hypotheses_bay = 5;
   // Mounts read off the bar's front instead (mount_surfaces.hpp): the
   // strongest peaks of the histogram where a bar's front face could stand
   // over a mount no surface peak offers, searched after those and only
-  // while none of them has held a handrail.
+  // while none of them has held a handrail. At most kMaxMountHypotheses
+  // less the larger of max_mount_hypotheses and max_mount_hypotheses_bay.
   std::uint32_t front_peak_mounts = 1;
   // A handrail found with this many line inliers ends the search over
   // mounts; with fewer, the other mounts are searched too.

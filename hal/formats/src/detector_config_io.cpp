@@ -69,6 +69,7 @@ constexpr UintKey kUintKeys[] = {
     {"max_width", &estimator::DetectorConfig::max_width},
     {"max_height", &estimator::DetectorConfig::max_height},
     {"max_mount_hypotheses", &estimator::DetectorConfig::max_mount_hypotheses},
+    {"max_mount_hypotheses_bay", &estimator::DetectorConfig::max_mount_hypotheses_bay},
     {"front_peak_mounts", &estimator::DetectorConfig::front_peak_mounts},
     {"mount_accept_inliers", &estimator::DetectorConfig::mount_accept_inliers},
     {"mount_beside_min_pixels", &estimator::DetectorConfig::mount_beside_min_pixels},
