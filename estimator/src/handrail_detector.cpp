@@ -249,9 +249,12 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // Seated on a track the bar hides, past a seen end that track must
   // stand proud of the face beside it; a cable over a face, read as a bar
   // on a hidden track, has the face running on there (session 33).
+  // The hidden track's top (the bar's mount) in the heights the measure
+  // takes, from the search's wall.
+  const float track_top_m = line->mount_offset_m - search_mount_m_;
   if (cfg_.track_beside && line->on_hidden_track &&
       !track_runs_past_end(measure_track_past_end(cloud, scale_, ws_, wall_, *line, end_t), ends,
-                           cfg_)) {
+                           track_top_m, cfg_)) {
     return LineVerdict::kNoTrackPastEnd;
   }
   const Eigen::Vector3f visible_middle = line->point + 0.5f * (end_t[0] + end_t[1]) * line->axis;

@@ -102,10 +102,14 @@ TrackPastEnd measure_track_past_end(const OrganizedCloud& cloud, const PixelScal
   return m;
 }
 
-bool track_runs_past_end(const TrackPastEnd& m, const bool end_seen[2], const DetectorConfig& cfg) {
+bool track_runs_past_end(const TrackPastEnd& m, const bool end_seen[2], float track_top_m,
+                         const DetectorConfig& cfg) {
   bool face_runs_on = false;
   for (int end = 0; end < 2; ++end) {
     if (!end_seen[end] || m.strip_pixels[end] < kPastEndMinPixels) continue;
+    // Something as high as the bar's back over the track's top stands
+    // over where the track would run: what lies under it is not seen.
+    if (m.strip_m[end] - track_top_m >= gap_min_m(cfg)) continue;
     int level_flanks = 0;
     for (int s = 0; s < 2; ++s) {
       if (m.flank_pixels[end][s] < kPastEndMinPixels) continue;

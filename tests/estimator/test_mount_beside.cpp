@@ -180,6 +180,8 @@ void test_an_open_face_on_both_sides_is_no_seat_track(void**) {
 void test_a_hidden_track_stands_proud_past_the_end(void**) {
   const DetectorConfig cfg;
   const bool seen[2] = {true, false};
+  // The hidden track's top: a step over the face the strip lies on.
+  const float face = cfg.mount_step_m;
   TrackPastEnd m;
   m.strip_pixels[0] = 40;
   m.flank_pixels[0][0] = m.flank_pixels[0][1] = 40;
@@ -187,25 +189,37 @@ void test_a_hidden_track_stands_proud_past_the_end(void**) {
   m.strip_m[0] = 0.0f;
   m.flank_m[0][0] = 0.001f;
   m.flank_m[0][1] = -0.002f;
-  assert_false(track_runs_past_end(m, seen, cfg));
+  assert_false(track_runs_past_end(m, seen, face, cfg));
   // The same past an end not seen (the image cuts it): nothing said.
   const bool unseen[2] = {false, false};
-  assert_true(track_runs_past_end(m, unseen, cfg));
+  assert_true(track_runs_past_end(m, unseen, face, cfg));
   // A track's step (1.3 cm) over one flank, the other a face flush with
   // its top: a track.
   m.flank_m[0][1] = -0.013f;
-  assert_true(track_runs_past_end(m, seen, cfg));
+  assert_true(track_runs_past_end(m, seen, face, cfg));
   // Less than half a step: the face, refused.
   m.flank_m[0][1] = -0.006f;
-  assert_false(track_runs_past_end(m, seen, cfg));
+  assert_false(track_runs_past_end(m, seen, face, cfg));
   // One flank too thin to judge and the other level: a flush neighbour may
   // be all that shows; nothing said.
   m.flank_pixels[0][1] = kPastEndMinPixels - 1;
-  assert_true(track_runs_past_end(m, seen, cfg));
+  assert_true(track_runs_past_end(m, seen, face, cfg));
   // Too little strip: nothing said.
   m.flank_pixels[0][1] = 40;
   m.strip_pixels[0] = kPastEndMinPixels - 1;
-  assert_true(track_runs_past_end(m, seen, cfg));
+  assert_true(track_runs_past_end(m, seen, face, cfg));
+  // Level across, but 6 cm over the track's top (a box across the end, the
+  // third development set's rack clutter): something at the bar's own
+  // height stands over where the track would run; nothing said. A face
+  // 1.2 cm over the track's top running on in line with it (Columbus) is
+  // still refused: no track runs on under it.
+  m.strip_pixels[0] = 40;
+  m.strip_m[0] = 0.06f;
+  m.flank_m[0][0] = 0.061f;
+  m.flank_m[0][1] = 0.059f;
+  assert_true(track_runs_past_end(m, seen, 0.0f, cfg));
+  assert_true(track_runs_past_end(m, seen, 0.06f - gap_min_m(cfg), cfg));
+  assert_false(track_runs_past_end(m, seen, 0.06f - 0.012f, cfg));
 }
 
 // The levels beside the bar, for the front-height test: what each side

@@ -64,7 +64,13 @@ TrackPastEnd measure_track_past_end(const OrganizedCloud& cloud, const PixelScal
 // many pixels and lie level with the strip (one face running on under
 // where the track would be). One flank alone level with the strip may be a
 // neighbouring face flush with the track's top; an end with too little to
-// judge (cut by the image, dropouts, a gap) says nothing.
-bool track_runs_past_end(const TrackPastEnd& m, const bool end_seen[2], const DetectorConfig& cfg);
+// judge (cut by the image, dropouts, a gap) says nothing. So does an end
+// whose strip stands at least gap_min_m(cfg) (the bar's back) over
+// `track_top_m`, the hidden track's top (the bar's mount, in the strip's
+// heights): something at the bar's own height stands over where the track
+// would run (a box or a cable across the end; session 34), and a box's top
+// is level across.
+bool track_runs_past_end(const TrackPastEnd& m, const bool end_seen[2], float track_top_m,
+                         const DetectorConfig& cfg);
 
 }  // namespace estimator
