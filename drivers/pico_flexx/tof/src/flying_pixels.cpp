@@ -26,6 +26,10 @@ Floats4 flying_threshold_m(Floats4 range_m) {
   const Floats4 ramp = 0.018f + (range_m - 1.0f) * (0.122f / 3.5f);
   return v4::min4(v4::max4(ramp, v4::splat(0.018f)), v4::splat(0.14f));
 }
+// The same for one pixel (the columns past the last block of four).
+float flying_threshold_m(float range_m) {
+  return flying_threshold_m(v4::splat(range_m))[0];
+}
 
 }  // namespace
 
@@ -36,8 +40,7 @@ void Processor::flying_pixel_pass() {
   // Blocks of four from column 1; the last block ends at column 220, so
   // columns 221 and 222 are tested one by one with the same rule.
   auto flying_one = [&](int i) {
-    const float ri = r[i],
-                th = std::min(0.14f, std::max(0.018f, 0.018f + (ri - 1.0f) * (0.122f / 3.5f)));
+    const float ri = r[i], th = flying_threshold_m(ri);
     auto jump = [&](int j) { return r[j] > 0.0f && std::fabs(ri - r[j]) > th; };
     return ri > 0.0f && ((jump(i - 1) && jump(i + 1)) || (jump(i - w) && jump(i + w)));
   };
@@ -80,8 +83,7 @@ void Processor::strand_pass() {
   std::uint8_t stranded[2][kWidthPx] = {};
   auto strand_one = [&](int i) {
     if (st[i] != PixelState::kValid) return false;
-    const float ri = r[i],
-                th = std::min(0.14f, std::max(0.018f, 0.018f + (ri - 1.0f) * (0.122f / 3.5f)));
+    const float ri = r[i], th = flying_threshold_m(ri);
     bool agrees = false, edge = false;
     for (const int j : {i - 1, i + 1, i - w, i + w}) {
       if (st[j] == PixelState::kValid) {
