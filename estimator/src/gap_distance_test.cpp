@@ -21,13 +21,33 @@ using four_lanes::Ints4;
 using four_lanes::load_four_points;
 typedef std::uint8_t Bytes4 __attribute__((vector_size(4)));
 
+// The most faces in view a search takes as the probes' wall.
+constexpr std::uint32_t kMaxWallFaces = 8;
+
 // What the pass needs of the wall and the configuration, once per frame.
 struct GapTestLimits {
   float nx, ny, nz, d;
   float min_range_m, max_range_m;
   float gap_lo_m, gap_hi_m;  // eq. 1's window on the signed wall distance
   float plane_inlier_m, wall_tolerance_m;
+  // Faces in view that are the probes' wall on this mount (distances from
+  // the dominant plane; see gap_distance_shifted).
+  std::uint32_t face_count;
+  float face_m[kMaxWallFaces];
 };
+
+// A face in view is the probes' wall on the mount offset_m from the
+// dominant plane when it stands above the wall tolerance over the mount
+// (below it, its pixels are wall anyway) and below the gap window.
+bool face_is_wall(const DetectorConfig& cfg, float face_m, float offset_m) {
+  const float over_mount_m = face_m - offset_m;
+  return over_mount_m >= cfg.wall_tolerance_m && over_mount_m < gap_min_m(cfg);
+}
+
+// A pixel is on a face within this much plus its own noise (half the gap
+// window's widening, one sigma): faces in view are histogram peaks refined
+// to their mean, and neighbouring faces differ by a centimetre or more.
+constexpr float kOnFaceM = 0.005f;
 
 // Four pixels' flags and wall distances. Lanes are all-ones where a
 // comparison holds, so a flag is its lane masked with the flag's bit.
@@ -84,8 +104,14 @@ inline __attribute__((always_inline)) Ints4 classify_four_shifted(const float* p
   const Ints4 valid = s0 > zero - std::numeric_limits<float>::infinity();
   const Floats4 abs_s0 = s0 < zero ? -s0 : s0;
   const Ints4 on_plane = valid & (abs_s0 < g.plane_inlier_m);
-  const Ints4 on_wall = valid & (s < g.wall_tolerance_m);
   const Ints4 in_gap = valid & (s >= g.gap_lo_m - widen) & (s <= g.gap_hi_m + widen);
+  Ints4 on_face = {0, 0, 0, 0};
+  const Floats4 face_tolerance = kOnFaceM + 0.5f * widen;
+  for (std::uint32_t k = 0; k < g.face_count; ++k) {
+    const Floats4 off_face = s0 - g.face_m[k];
+    on_face |= (off_face <= face_tolerance) & (off_face >= zero - face_tolerance);
+  }
+  const Ints4 on_wall = valid & ((s < g.wall_tolerance_m) | (on_face & (s < g.gap_lo_m - widen)));
   constexpr std::int32_t kValid = kFlagValid, kPlane = kFlagPlane, kGap = kFlagGap,
                          kWall = kFlagWall;
   return (valid & kValid) | (on_plane & kPlane) | (in_gap & kGap) | (on_wall & kWall);
@@ -231,9 +257,18 @@ std::uint32_t run_gap_pass(std::size_t n, Workspace& ws, std::uint32_t* valid_pi
 
 std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfig& cfg,
                                 const Plane& wall, Workspace& ws, std::uint32_t* valid_pixels) {
-  const GapTestLimits g{wall.normal.x(),    wall.normal.y(),     wall.normal.z(), wall.d,
-                        cfg.min_range_m,    cfg.max_range_m,     gap_min_m(cfg),  gap_max_m(cfg),
-                        cfg.plane_inlier_m, cfg.wall_tolerance_m};
+  const GapTestLimits g{wall.normal.x(),
+                        wall.normal.y(),
+                        wall.normal.z(),
+                        wall.d,
+                        cfg.min_range_m,
+                        cfg.max_range_m,
+                        gap_min_m(cfg),
+                        gap_max_m(cfg),
+                        cfg.plane_inlier_m,
+                        cfg.wall_tolerance_m,
+                        0,
+                        {}};
   // An invalid pixel's distance is -infinity, so that "raised off the wall"
   // is one comparison that an invalid pixel always fails.
   const CloudPoint* points = cloud.points;
@@ -264,13 +299,25 @@ void keep_plane_pass(const OrganizedCloud& cloud, Workspace& ws) {
   std::memcpy(ws.plane_distance_m.get(), ws.signed_distance_m.get(), cloud.size() * sizeof(float));
 }
 
+bool faces_beside_mount(const DetectorConfig& cfg, float offset_m, const float* faces_m,
+                        std::uint32_t face_count) {
+  for (std::uint32_t k = 0; k < face_count; ++k) {
+    if (face_is_wall(cfg, faces_m[k], offset_m)) return true;
+  }
+  return false;
+}
+
 std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                   float offset_m, Workspace& ws, std::uint32_t* valid_pixels) {
+                                   float offset_m, Workspace& ws, std::uint32_t* valid_pixels,
+                                   const float* faces_m, std::uint32_t face_count) {
   GapTestLimits g{};
   g.gap_lo_m = gap_min_m(cfg);
   g.gap_hi_m = gap_max_m(cfg);
   g.plane_inlier_m = cfg.plane_inlier_m;
   g.wall_tolerance_m = cfg.wall_tolerance_m;
+  for (std::uint32_t k = 0; k < face_count && g.face_count < kMaxWallFaces; ++k) {
+    if (face_is_wall(cfg, faces_m[k], offset_m)) g.face_m[g.face_count++] = faces_m[k];
+  }
   const float* plane_distance = ws.plane_distance_m.get();
   const float* widen = ws.gap_widen_m.get();
   float* distance_out = ws.signed_distance_m.get();

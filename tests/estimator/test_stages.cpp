@@ -205,6 +205,38 @@ void test_gap_pass_matches_a_scalar_reference(void**) {
     for (std::size_t k = 0; k < listed.size(); ++k) assert_int_equal(ws.gap[k], listed[k]);
     if (!plane_out) assert_true(offset > 0.0f || plane_listed > 10);
   }
+
+  // Faces in view as the probes' wall (session 35). Faces 1.5, 3 and 4.5 cm
+  // and 7 cm over the plane; on the plane's own search the 3 and 4.5 cm
+  // faces stand between the wall tolerance and the gap window (5.7 cm for
+  // the paper's handrail), the 1.5 cm one is wall anyway and the 7 cm one
+  // lies in the window. A pixel on a face (within 5 mm plus half its
+  // widening) below the window is wall; nothing else changes. On a mount
+  // 2 cm below the plane the 4.5 cm face stands in the window: only the
+  // 3 cm one counts.
+  const float faces_m[] = {0.015f, 0.03f, 0.045f, 0.07f};
+  assert_true(faces_beside_mount(cfg, 0.0f, faces_m, 4));
+  assert_false(faces_beside_mount(cfg, 0.0f, faces_m, 1));
+  assert_false(faces_beside_mount(cfg, 0.0f, faces_m + 3, 1));
+  assert_false(faces_beside_mount(cfg, -0.04f, faces_m + 1, 1));
+  for (const float offset : {0.0f, -0.02f}) {
+    gap_distance_shifted(cloud, cfg, offset, ws, &valid, faces_m, 4);
+    std::size_t face_walls = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      Expected e = classify(plain[i].s_m, plain[i].flags != 0, plain[i].widen_m, offset);
+      if (e.flags != 0 && !(e.flags & kFlagWall) && e.s_m < lo - e.widen_m) {
+        for (const float face : faces_m) {
+          const bool counts = face - offset >= cfg.wall_tolerance_m && face - offset < lo;
+          if (counts && std::fabs(plain[i].s_m - face) <= 0.005f + 0.5f * e.widen_m) {
+            e.flags |= kFlagWall;
+            ++face_walls;
+          }
+        }
+      }
+      assert_int_equal(ws.flags[i], e.flags);
+    }
+    assert_true(face_walls > 10);  // the rule was exercised
+  }
 }
 
 void test_pixel_scale_recovers_projection(void**) {

@@ -50,6 +50,10 @@ void test_config_file(void**) {
       "{\"track_beside\": false, \"track_beside_min_pixels\": 30}", "t.json", &none, &error));
   assert_false(none.track_beside);
   assert_int_equal(none.track_beside_min_pixels, 30);
+  assert_true(none.cross_faces_wall);
+  assert_true(
+      formats::parse_detector_config("{\"cross_faces_wall\": false}", "f.json", &none, &error));
+  assert_false(none.cross_faces_wall);
 
   struct Case {
     const char* text;
@@ -62,6 +66,7 @@ void test_config_file(void**) {
       {"{\n \"plane_faces_normal\": 1\n}",
        "c.json:2: \"plane_faces_normal\" must be true or false"},
       {"{\n \"track_beside\": \"yes\"\n}", "c.json:2: \"track_beside\" must be true or false"},
+      {"{\n \"cross_faces_wall\": 0\n}", "c.json:2: \"cross_faces_wall\" must be true or false"},
       {"{\n \"handrail\": {\"kind\": \"oval\"}\n}",
        "c.json:2: \"handrail.kind\" must be \"iss\" or \"round\""},
       {"{\n \"min_line_inliers\": 2.5\n}",

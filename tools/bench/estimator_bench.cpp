@@ -119,11 +119,14 @@ double thread_cpu_us() {
 // thread's CPU time.
 // bay_budget: mounts searched in a view of an empty bay, 0 for the
 // configuration's (5); 3 was the budget before session 34, beside it.
+// faces_wall: the cross test's probes take the faces in view as wall (the
+// default since session 35); off beside it.
 void BM_ScenarioProposed(benchmark::State& state, const char* name, bool round,
-                         std::uint32_t bay_budget = 0) {
+                         std::uint32_t bay_budget = 0, bool faces_wall = true) {
   const ScenarioFrames& frames = scenario_frames(name, round);
   estimator::DetectorConfig cfg = frames.cfg;
   if (bay_budget > 0) cfg.max_mount_hypotheses_bay = bay_budget;
+  cfg.cross_faces_wall = faces_wall;
   estimator::HandrailDetector det(cfg);
   std::vector<double> frame_us, frame_cpu_us;
   frame_us.reserve(1 << 16);
@@ -251,12 +254,21 @@ BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_approach_vertical_21_5,
 BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_clutter_vertical_30, "rack-clutter-vertical-30.json",
                   false)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_clutter_vertical_30_no_faces_wall,
+                  "rack-clutter-vertical-30.json", false, 0, false)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_no_handrail_wall, "rack-no-handrail-wall.json", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_no_handrail_wall_no_faces_wall,
+                  "rack-no-handrail-wall.json", false, 0, false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, columbus_approaches, "columbus-approaches.json", false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, columbus_approaches_bay_budget_3, "columbus-approaches.json",
                   false, 3)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, columbus_approaches_no_faces_wall,
+                  "columbus-approaches.json", false, 0, false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_0_53, "rack-table2-iss-0-53.json", false)
     ->Unit(benchmark::kMillisecond);

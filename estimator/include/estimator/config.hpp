@@ -153,6 +153,10 @@ struct DetectorConfig {
   // Cross point test (eqs. 2, 3). d_c = sqrt(2) b_D + delta.
   float cross_delta_m = 0.035f;
   float wall_tolerance_m = 0.02f;  // d_g,min: "on the wall" (or anywhere below it)
+  // ... and on a surface in view (a face of the frame's height histogram)
+  // standing between that and the gap window over the search's mount: the
+  // face beside a seat track on a rack (session 35, gap_distance_shifted).
+  bool cross_faces_wall = true;
 
   // Side width test (eq. 4) on the raised span through the pixel.
   float side_width_min_ratio = 0.6f;  // x bar width

@@ -27,8 +27,24 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
 // the returned count stay the dominant plane's. One difference: when
 // plane_left_out_of_gap_list(), the dominant plane's inliers keep their gap
 // bit (the probes read it) but are left out of ws.gap.
+//
+// faces_m (face_count of them, distances from the dominant plane): the
+// surfaces in view (MountHypotheses::surface_m). A pixel on one of them
+// (within 5 mm plus its noise) standing above the wall tolerance but below
+// the gap window over this mount is wall to the cross test's probes too:
+// beside a seat track on a rack the probe lands on a neighbouring face 2
+// to 3.5 cm over the track's face as often as on that face (session 35).
+// Only faces, not any height below the window: taking every pixel below
+// the window as wall (eq. 3's d_g,min read as the window's lower edge) let
+// cables beside boxes through, three times the false detections of this.
 std::uint32_t gap_distance_shifted(const OrganizedCloud& cloud, const DetectorConfig& cfg,
-                                   float offset_m, Workspace& ws, std::uint32_t* valid_pixels);
+                                   float offset_m, Workspace& ws, std::uint32_t* valid_pixels,
+                                   const float* faces_m = nullptr, std::uint32_t face_count = 0);
+
+// Whether any of the surfaces in view would be the probes' wall on the
+// mount offset_m from the dominant plane (see gap_distance_shifted).
+bool faces_beside_mount(const DetectorConfig& cfg, float offset_m, const float* faces_m,
+                        std::uint32_t face_count);
 
 // Whether a search offset_m from the dominant plane leaves the plane's own
 // inliers out of its gap list: when a bar on that mount would have its

@@ -204,12 +204,15 @@ bool read_detector_config(const formats::JsonValue& root, const std::string& pat
       if (!read_handrail_types(v, path, quoted(key), &c, error)) return false;
       continue;
     }
-    if (key == "plane_faces_normal" || key == "track_beside") {
+    if (key == "plane_faces_normal" || key == "track_beside" || key == "cross_faces_wall") {
       if (!v.is_bool()) {
         *error = at(path, v) + quoted(key) + " must be true or false";
         return false;
       }
-      (key == "plane_faces_normal" ? c.plane_faces_normal : c.track_beside) = v.boolean;
+      bool& flag = key == "plane_faces_normal" ? c.plane_faces_normal
+                   : key == "track_beside"     ? c.track_beside
+                                               : c.cross_faces_wall;
+      flag = v.boolean;
       continue;
     }
     bool known = false;
