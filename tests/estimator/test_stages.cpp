@@ -212,8 +212,8 @@ void test_gap_pass_matches_a_scalar_reference(void**) {
   // the paper's handrail), the 1.5 cm one is wall anyway and the 7 cm one
   // lies in the window. A pixel on a face (within 5 mm plus half its
   // widening) below the window is wall; nothing else changes. On a mount
-  // 2 cm below the plane the 4.5 cm face stands in the window: only the
-  // 3 cm one counts.
+  // 2 cm below the plane the 4.5 cm face stands in the window, and the 1.5
+  // and 3 cm ones count.
   const float faces_m[] = {0.015f, 0.03f, 0.045f, 0.07f};
   assert_true(faces_beside_mount(cfg, 0.0f, faces_m, 4));
   assert_false(faces_beside_mount(cfg, 0.0f, faces_m, 1));
