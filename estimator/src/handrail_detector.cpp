@@ -482,13 +482,10 @@ void HandrailDetector::search_mount(const OrganizedCloud& cloud, const Plane& do
   search_mount_m_ = offset_m;
   wall_ = dominant;
   wall_.d -= offset_m;
-  // The first pass, against the dominant plane, ran before the surfaces in
-  // view were known: its search passes again when a face is wall there.
-  const std::uint32_t face_count = cfg_.cross_faces_wall ? mounts_.surface_count : 0;
-  const bool faces_are_wall = faces_beside_mount(cfg_, offset_m, mounts_.surface_m, face_count);
-  if (run_gap_pass || faces_are_wall) {
-    gap_distance_shifted(cloud, cfg_, offset_m, ws_, &out->counts.valid, mounts_.surface_m,
-                         face_count);
+  // Again where a face is wall: the plane's first pass ran before the faces were known.
+  const std::uint32_t faces = cfg_.cross_faces_wall ? mounts_.surface_count : 0;
+  if (run_gap_pass || faces_beside_mount(cfg_, offset_m, mounts_.surface_m, faces)) {
+    gap_distance_shifted(cloud, cfg_, offset_m, ws_, &out->counts.valid, mounts_.surface_m, faces);
   }
   search_on_mount(cloud, start_us, out);
 }

@@ -32,6 +32,18 @@ std::string scenario_path(const char* name) {
   return std::string(root ? root : ".") + "/sim_hal/scenarios/" + name;
 }
 
+// A scenario written in the test, its relative paths (meshes) taken from
+// the scenario folder as if it were the file `name` there.
+sim_hal::Scenario parse_inline(const char* json, const char* name) {
+  sim_hal::Scenario sc;
+  std::string error;
+  if (!sim_hal::parse_scenario(json, scenario_path(name), &sc, &error)) {
+    print_error("%s\n", error.c_str());
+    fail();
+  }
+  return sc;
+}
+
 sim_hal::Scenario load(const char* name) {
   sim_hal::Scenario sc;
   std::string error;
@@ -338,13 +350,7 @@ const char* const kRailBesideTheDominantFace = R"({
 // in all frames but one at most.
 template <typename RenderFrame>
 void detect_rail_beside_the_dominant_face(const char* path_name, RenderFrame render_frame) {
-  sim_hal::Scenario sc;
-  std::string error;
-  if (!sim_hal::parse_scenario(kRailBesideTheDominantFace, scenario_path("rail-beside.json"), &sc,
-                               &error)) {
-    print_error("%s\n", error.c_str());
-    fail();
-  }
+  const sim_hal::Scenario sc = parse_inline(kRailBesideTheDominantFace, "rail-beside.json");
   estimator::DetectorConfig cfg;
   cfg.gripper_angle_rad = static_cast<float>(M_PI / 2);
   estimator::HandrailDetector detector(cfg);
@@ -376,10 +382,7 @@ void test_rail_on_a_face_beside_the_dominant_plane_is_seated_there(void**) {
 // refused by the side width test before the plane's search can seat it
 // (noise had widened that test's window enough on the depth path alone).
 void test_rail_beside_the_dominant_plane_is_found_on_the_raw_path(void**) {
-  sim_hal::Scenario sc;
-  std::string error;
-  assert_true(sim_hal::parse_scenario(kRailBesideTheDominantFace, scenario_path("rail-beside.json"),
-                                      &sc, &error));
+  const sim_hal::Scenario sc = parse_inline(kRailBesideTheDominantFace, "rail-beside.json");
   RawPath raw(sc);
   detect_rail_beside_the_dominant_face(
       "raw", [&](const sim_hal::Scenario& s, std::size_t f, Rendered* r) { raw.render(s, f, r); });
@@ -411,13 +414,7 @@ const char* const kRailBesideATallFace = R"({
 // Finds of the rail in the scene above, depth and raw paths, with the
 // faces in view taken as the probes' wall or not.
 int finds_beside_a_tall_face(bool faces_wall, bool raw_path) {
-  sim_hal::Scenario sc;
-  std::string error;
-  if (!sim_hal::parse_scenario(kRailBesideATallFace, scenario_path("rail-beside-tall.json"), &sc,
-                               &error)) {
-    print_error("%s\n", error.c_str());
-    fail();
-  }
+  const sim_hal::Scenario sc = parse_inline(kRailBesideATallFace, "rail-beside-tall.json");
   estimator::DetectorConfig cfg;
   cfg.cross_faces_wall = faces_wall;
   estimator::HandrailDetector detector(cfg);
