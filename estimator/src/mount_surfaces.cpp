@@ -3,6 +3,8 @@
 #include <cmath>
 #include <initializer_list>
 
+#include "estimator/plane_estimation.hpp"
+
 namespace estimator {
 namespace {
 
@@ -66,12 +68,21 @@ void fill_histogram(const OrganizedCloud& cloud, const DetectorConfig& cfg, cons
 
 // The surfaces: local maxima of the histogram smoothed over three bins,
 // within mount_search_m of the plane or where rack faces stand in front of
-// an empty bay, with enough pixels; each at the mean of its five bins.
+// an empty bay, with enough pixels; each at the mean of its five bins,
+// deepest first (in a bay view the faces lie behind the bars' fronts and
+// the clutter's tops, so a full list keeps the faces). A maximum
+// closer than a rack's least face step (1 cm) to a better supported one is
+// a tooth of the same face: a noisy face seen obliquely breaks into a comb
+// of maxima 5 mm apart, which filled the list before the faces behind it
+// were reached (a rail's own face among them).
 std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
                                  std::uint32_t valid_pixels, float peak_m[kMaxSurfacePeaks]) {
   const float min_pixels = cfg.mount_min_fraction * static_cast<float>(valid_pixels);
-  std::uint32_t peaks = 0;
-  for (int b = 1; b + 1 < h.bins && peaks < kMaxSurfacePeaks; ++b) {
+  // A local maximum has a lower bin after it: at most every other bin.
+  constexpr int kMaxMaxima = kMountHistogramBins / 2;
+  int maximum_bin[kMaxMaxima];
+  int maxima = 0;
+  for (int b = 1; b + 1 < h.bins && maxima < kMaxMaxima; ++b) {
     // Near the plane, or where the rack faces stand in front of a bay.
     const float at_m = h.center_m(b);
     const bool near = std::fabs(at_m) <= cfg.mount_search_m;
@@ -81,11 +92,30 @@ std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
     if (static_cast<float>(c) < min_pixels || c < h.smoothed(b - 1) || c <= h.smoothed(b + 1)) {
       continue;
     }
+    maximum_bin[maxima++] = b;
+  }
+  // A tooth: a better supported maximum within the step (of two equal, the
+  // first in the histogram stays).
+  const int step_bins = static_cast<int>(kRackFaceStepM / kMountBinM + 0.5f);
+  const auto is_tooth = [&](int k) {
+    const std::uint32_t c = h.smoothed(maximum_bin[k]);
+    for (int j = k - 1; j >= 0 && maximum_bin[k] - maximum_bin[j] < step_bins; --j) {
+      if (h.smoothed(maximum_bin[j]) >= c) return true;
+    }
+    for (int j = k + 1; j < maxima && maximum_bin[j] - maximum_bin[k] < step_bins; ++j) {
+      if (h.smoothed(maximum_bin[j]) > c) return true;
+    }
+    return false;
+  };
+  std::uint32_t peaks = 0;
+  for (int k = 0; k < maxima && peaks < kMaxSurfacePeaks; ++k) {
+    if (is_tooth(k)) continue;
+    const int b = maximum_bin[k];
     double weighted = 0.0, total = 0.0;
-    for (int k = b - 2; k <= b + 2; ++k) {
-      if (k < 0 || k >= h.bins) continue;
-      weighted += static_cast<double>(h.count[k]) * h.center_m(k);
-      total += h.count[k];
+    for (int j = b - 2; j <= b + 2; ++j) {
+      if (j < 0 || j >= h.bins) continue;
+      weighted += static_cast<double>(h.count[j]) * h.center_m(j);
+      total += h.count[j];
     }
     peak_m[peaks++] = static_cast<float>(weighted / total);
   }
@@ -204,8 +234,12 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
   out.surface_count = peaks;
   for (std::uint32_t p = 0; p < peaks; ++p) out.surface_m[p] = peak_m[p];
   for (std::uint32_t p = 0; p < peaks; ++p) {
-    // The bar on the surface itself, or on a seat track standing on it.
+    // The bar on the surface itself, or on a seat track standing on it. A
+    // mount this near the plane is the plane, which has a search of its
+    // own: in the list it took a slot and was never searched, so a view
+    // offered one mount fewer than configured (session 36).
     for (const float mount : {peak_m[p], peak_m[p] + cfg.mount_step_m}) {
+      if (std::fabs(mount) < kSameMountM) continue;
       const std::uint32_t n = front_pixels(mount);
       if (n >= cfg.min_line_inliers) add_mount(mount, n, capacity, &out);
     }

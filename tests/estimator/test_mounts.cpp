@@ -161,6 +161,73 @@ void test_a_bay_view_searches_past_faces_at_a_bar_fronts_height(void**) {
   assert_true(more.count - more.front_peak_count > cfg.max_mount_hypotheses);
 }
 
+// A face seen obliquely through noise breaks into a comb of histogram
+// maxima a few millimetres apart (the development set's
+// `dev-rack-table2-iss-0-53`, second offset, last pose, on the raw path:
+// seven maxima 5 mm apart in front of an empty bay). Taken in order of
+// distance they filled the surface list, and the face the rail stands on,
+// behind them, was never a surface: the rail was missed in 29 of its 50
+// frames. A maximum within a face step of a better supported one is no
+// surface of its own.
+void test_a_comb_of_weak_maxima_leaves_room_for_a_stronger_face(void**) {
+  const float rail_face = 0.37f;
+  const DetectorConfig cfg;
+  // Eight spikes 5 mm apart, each within one histogram bin (at its centre;
+  // the frame spreads a height by +- 1 mm), make seven maxima between them.
+  const float lo_m = -(cfg.mount_search_m + 2.0f * kMountBinM);
+  const int first_bin = static_cast<int>((0.29f - lo_m) / kMountBinM);
+  std::vector<Heights> layers = {{0.0f, 0.3f}};
+  for (int k = 0; k < 8; ++k) {
+    const float centre_m = lo_m + (static_cast<float>(first_bin + 2 * k) + 0.5f) * kMountBinM;
+    layers.push_back({centre_m, k == 4 ? 0.04f : 0.02f});
+  }
+  layers.push_back({rail_face, 0.1f});
+  layers.push_back({rail_face + kFront, 0.03f});
+  const DistanceFrame f(layers);
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_true(has_surface(m, 0.0f));
+  assert_true(has_surface(m, rail_face));
+  // In order of distance, and the comb reduced to teeth a face step apart
+  // (before: the plane and seven teeth, the list full).
+  for (std::uint32_t k = 1; k < m.surface_count; ++k) {
+    assert_true(m.surface_m[k] - m.surface_m[k - 1] > kRackFaceStepM - kMountBinM);
+  }
+  assert_true(m.surface_count < kMaxSurfacePeaks);
+  float mount = 0.0f;
+  assert_true(find_mount_under_bar(m, cfg, rail_face + kFront, 0.004f, &mount));
+  assert_near(mount, rail_face, 0.0015f);
+}
+
+// The plane's own face offers a mount too, and a face standing a bar
+// front's height over the plane gives it the most front pixels. It is the
+// plane, searched on its own, so it must not take one of the slots: there
+// it pushed the seat track a rail stood on out of the list and was never
+// searched itself (the development sets' `dev-rack-approach-vertical-21-5`
+// at 1.1 to 1.25 m, 7 frames of 120 on one path or the other).
+void test_the_plane_takes_no_mount_slot(void**) {
+  const DistanceFrame f({{0.0f, 0.3f},
+                         {kFront, 0.1f},  // a face over the plane, at a front's height
+                         {-0.04f, 0.1f},
+                         {-0.04f + kFront, 0.05f},
+                         {-0.02f, 0.1f},
+                         {-0.02f + kFront, 0.04f},
+                         {0.013f + kFront, 0.025f}});  // a bar on a track on the plane
+  const DetectorConfig cfg;
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  // Three surface mounts, none the plane, the track among them (not left
+  // to a bar-front peak's mount, searched only while nothing is found).
+  const std::uint32_t surface_mounts = m.count - m.front_peak_count;
+  assert_int_equal(surface_mounts, cfg.max_mount_hypotheses);
+  bool track = false;
+  for (std::uint32_t k = 0; k < surface_mounts; ++k) {
+    assert_true(std::fabs(m.offset_m[k]) >= kSameMountM);
+    track |= std::fabs(m.offset_m[k] - 0.013f) < 0.0015f;
+  }
+  assert_true(track);
+  // The plane's front pixels are still reported, for the order of search.
+  assert_true(m.dominant_front_pixels >= static_cast<std::uint32_t>(0.09f * 224 * 171));
+}
+
 void test_no_bar_anywhere_leaves_the_plane(void**) {
   const DistanceFrame f({{0.0f, 0.7f}, {-0.02f, 0.2f}});
   const DetectorConfig cfg;
@@ -502,6 +569,8 @@ int main() {
       cmocka_unit_test(test_surfaces_too_far_from_the_plane_are_not_mounts),
       cmocka_unit_test(test_rack_faces_in_front_of_an_empty_bay_are_mounts),
       cmocka_unit_test(test_a_bay_view_searches_past_faces_at_a_bar_fronts_height),
+      cmocka_unit_test(test_a_comb_of_weak_maxima_leaves_room_for_a_stronger_face),
+      cmocka_unit_test(test_the_plane_takes_no_mount_slot),
       cmocka_unit_test(test_no_bar_anywhere_leaves_the_plane),
       cmocka_unit_test(test_a_small_surface_is_no_surface),
       cmocka_unit_test(test_a_face_too_small_for_a_peak_is_found_under_its_bar),
