@@ -208,6 +208,86 @@ Eigen::Vector3f sharpest_normal(Eigen::Vector3f n, const float* x, const float* 
   return n;
 }
 
+// A RANSAC plane may also pivot across two faces a few centimetres apart
+// so that both fall into its inlier band, one of them into a bin or two
+// along its normal: then it is itself a local maximum of the sharpness, and
+// the search above, started there, finds no slope toward the faces' own
+// normal 8 to 10 deg away (seen at 0.2 to 0.3 m from an overhead rail, the
+// rail's track a strip 2.8 cm proud of the wall). The sharpness falls off
+// within 3 to 4 deg of a face's normal, so a grid of tilts 2 deg apart to
+// 10 deg each way has a point on that slope. It is scored on the plane's
+// own inliers only (a copy on the stack): the faces it straddles, not
+// another wall of the view that happens to be sharper (on every point it
+// took other walls of the Columbus module views, 15 to 35 deg away). Its
+// sharpest point seeds the search when it beats the plane's own normal
+// there.
+constexpr int kGridSteps = 5;               // each way: 2, 4, ... 10 deg
+constexpr float kGridStepRad = 0.0349066f;  // 2 deg
+// The inliers lie in the plane's band, and a tilt of 10 deg moves them by a
+// few centimetres more: 64 bins of the search's 4 mm, centred on the plane,
+// hold them (a quarter of the search's histogram to clear and sum, and at
+// most 128 points, per evaluation).
+constexpr int kGridBins = 64;
+constexpr std::size_t kMaxGridPoints = 128;
+
+// Sum of squares of the inliers' 4 mm histogram along `n`, about the point
+// `on_plane` (the same measure as normal_sharpness).
+std::uint64_t band_sharpness(const Eigen::Vector3f& n, const Eigen::Vector3f& on_plane,
+                             const float* x, const float* y, const float* z, std::size_t m) {
+  std::uint32_t count[kGridBins] = {};
+  constexpr float kInverseBin = 1.0f / kSharpBinM;
+  const float base = n.dot(on_plane) - 0.5f * kGridBins * kSharpBinM;
+  for (std::size_t k = 0; k < m; ++k) {
+    const float bin = (n.x() * x[k] + n.y() * y[k] + n.z() * z[k] - base) * kInverseBin;
+    if (bin >= 0.0f && bin < static_cast<float>(kGridBins)) ++count[static_cast<int>(bin)];
+  }
+  std::uint64_t sum = 0;
+  for (const std::uint32_t c : count) sum += static_cast<std::uint64_t>(c) * c;
+  return sum;
+}
+
+Eigen::Vector3f sharpest_grid_tilt(const Plane& plane, float band_m, const float* x, const float* y,
+                                   const float* z, std::size_t m) {
+  const Eigen::Vector3f& n = plane.normal;
+  float gx[kMaxGridPoints], gy[kMaxGridPoints], gz[kMaxGridPoints];
+  std::size_t inliers = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    inliers += std::fabs(n.x() * x[k] + n.y() * y[k] + n.z() * z[k] + plane.d) <= band_m;
+  }
+  // Every stride-th inlier, spread over the view as the scored points are.
+  const std::size_t stride = (inliers + kMaxGridPoints - 1) / kMaxGridPoints;
+  std::size_t g = 0, seen = 0;
+  for (std::size_t k = 0; k < m && g < kMaxGridPoints; ++k) {
+    if (!(std::fabs(n.x() * x[k] + n.y() * y[k] + n.z() * z[k] + plane.d) <= band_m)) continue;
+    if (seen++ % stride != 0) continue;
+    gx[g] = x[k];
+    gy[g] = y[k];
+    gz[g] = z[k];
+    ++g;
+  }
+  const Eigen::Vector3f on_plane = -plane.d * n;
+  const Eigen::Vector3f u = n.unitOrthogonal(), v = n.cross(u);
+  Eigen::Vector3f best_n = n;
+  std::uint64_t best = band_sharpness(n, on_plane, gx, gy, gz, g);
+  float tilt[2 * kGridSteps + 1];
+  for (int i = -kGridSteps; i <= kGridSteps; ++i) {
+    tilt[i + kGridSteps] = std::tan(static_cast<float>(i) * kGridStepRad);
+  }
+  for (int i = -kGridSteps; i <= kGridSteps; ++i) {
+    for (int j = -kGridSteps; j <= kGridSteps; ++j) {
+      if (i == 0 && j == 0) continue;
+      const Eigen::Vector3f candidate =
+          (n + tilt[i + kGridSteps] * u + tilt[j + kGridSteps] * v).normalized();
+      const std::uint64_t s = band_sharpness(candidate, on_plane, gx, gy, gz, g);
+      if (s > best) {
+        best = s;
+        best_n = candidate;
+      }
+    }
+  }
+  return best_n;
+}
+
 // The faces' shared normal refined by least squares over the faces
 // themselves: along the current normal each face is a peak of the points'
 // distances (1 mm bins within 3.2 cm of the plane, at most kMaxFaces
@@ -526,7 +606,8 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
   const float* sy = ws.score_y_m.get();
   const float* sz = ws.score_z_m.get();
   Plane tight = best;
-  const Eigen::Vector3f sharp = sharpest_normal(best.normal, sx, sy, sz, m_score);
+  const Eigen::Vector3f sharp = sharpest_normal(
+      sharpest_grid_tilt(best, cfg.plane_inlier_m, sx, sy, sz, m_score), sx, sy, sz, m_score);
   // Within a degree the broad fit stands: it is the least-squares fit of
   // one wall, finer than the search's steps.
   const bool tilted = sharp.allFinite() && sharp.dot(best.normal) < kSharperCos;
