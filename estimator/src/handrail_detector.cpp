@@ -18,7 +18,6 @@
 
 namespace estimator {
 namespace {
-constexpr float kQuarterPi = 0.78539816f;
 // A bar's pixels this close to the image's border: the edge cuts it.
 constexpr int kBorderPx = 3;
 // A frame's random stream: the configured seed and the frame id.

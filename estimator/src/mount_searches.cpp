@@ -10,9 +10,6 @@
 #include "estimator/plane_estimation.hpp"
 
 namespace estimator {
-namespace {
-constexpr float kQuarterPi = 0.78539816f;
-}  // namespace
 
 // Within 45 deg of the gripper's angle in the image (the paper's psi_p:
 // 0 = along image y), from the bar's centre and a point along its axis.

@@ -58,6 +58,9 @@ class HandrailDetector {
   const LineTrace& last_line_trace() const { return trace_; }
 
  private:
+  // 45 deg: the half-width of Algorithm 1's angle families and of the
+  // gripper's acceptance (the searches in both source files use it).
+  static constexpr float kQuarterPi = 0.78539816f;
   bool over_budget(std::int64_t start_us) const;
   void clear_flags(const OrganizedCloud& cloud);
   void run_proposed(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
