@@ -68,13 +68,18 @@ void fill_histogram(const OrganizedCloud& cloud, const DetectorConfig& cfg, cons
 
 // The surfaces: local maxima of the histogram smoothed over three bins,
 // within mount_search_m of the plane or where rack faces stand in front of
-// an empty bay, with enough pixels; each at the mean of its five bins,
-// deepest first (in a bay view the faces lie behind the bars' fronts and
-// the clutter's tops, so a full list keeps the faces). A maximum
-// closer than a rack's least face step (1 cm) to a better supported one is
-// a tooth of the same face: a noisy face seen obliquely breaks into a comb
-// of maxima 5 mm apart, which filled the list before the faces behind it
-// were reached (a rail's own face among them).
+// an empty bay, with enough pixels. In front of the plane the range runs a
+// face step further: faces closer than that merge into one peak under a
+// metre's depth noise, at a level between them, so a face at the range's
+// end beside one a little further out showed no peak inside it (session
+// 37). Behind the plane it does not: no mount is searched deeper than
+// mount_search_m (handrail_filters.hpp). Each surface lies at the mean of
+// its five bins, deepest first (in a bay view the faces lie behind the
+// bars' fronts and the clutter's tops, so a full list keeps the faces).
+// A maximum closer than a rack's least face step (1 cm) to a better
+// supported one is a tooth of the same face: a noisy face seen obliquely
+// breaks into a comb of maxima 5 mm apart, which filled the list before
+// the faces behind it were reached (a rail's own face among them).
 std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
                                  std::uint32_t valid_pixels, float peak_m[kMaxSurfacePeaks]) {
   const float min_pixels = cfg.mount_min_fraction * static_cast<float>(valid_pixels);
@@ -85,7 +90,7 @@ std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
   for (int b = 1; b + 1 < h.bins && maxima < kMaxMaxima; ++b) {
     // Near the plane, or where the rack faces stand in front of a bay.
     const float at_m = h.center_m(b);
-    const bool near = std::fabs(at_m) <= cfg.mount_search_m;
+    const bool near = at_m >= -cfg.mount_search_m && at_m <= cfg.mount_search_m + kRackFaceStepM;
     const bool bay_front = at_m >= cfg.mount_bay_min_m && at_m <= cfg.mount_bay_max_m;
     if (!near && !bay_front) continue;
     const std::uint32_t c = h.smoothed(b);
@@ -224,10 +229,9 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
   const auto front_pixels = [&](float mount_m) {
     return h.sum(mount_m + front - kFrontWindowM, mount_m + front + kFrontWindowM);
   };
-  // A surface beyond the plane's own mount range lies in the bay's range:
-  // the plane is the back of an empty bay.
+  // A surface in the bay's range: the plane is the back of an empty bay.
   bool bay_view = false;
-  for (std::uint32_t p = 0; p < peaks; ++p) bay_view |= peak_m[p] > cfg.mount_search_m;
+  for (std::uint32_t p = 0; p < peaks; ++p) bay_view |= peak_m[p] >= cfg.mount_bay_min_m;
   const std::uint32_t capacity = bay_view ? cfg.max_mount_hypotheses_bay : cfg.max_mount_hypotheses;
   MountHypotheses out;
   out.dominant_front_pixels = front_pixels(0.0f);

@@ -6,8 +6,9 @@ python3 generate.py --dev DIR [--dev-offset N] writes a development set instead:
 scenarios with every layout drawn from other seeds (and other sensor noise),
 approaches to four other rails in Columbus (other rack edges, other
 lengths: COLUMBUS_DEV_RAILS), views along and across Columbus from other
-places (columbus_views()) and a flat wall with seeded clutter
-(flat_clutter()), named dev-*, into DIR (not committed). Work on the
+places (columbus_views()), a flat wall with seeded clutter
+(flat_clutter()) and seeded sweeps past handrails on a cluttered flat wall
+(dev_sweep()), named dev-*, into DIR (not committed). Work on the
 detector is tried there; the shipped scenarios stay the ones it is judged on, so that no threshold is
 fitted to the scenes that score it.
 
@@ -142,7 +143,7 @@ def write(s):
         # places) and the seeded flat-wall clutter. Mesh
         # paths made absolute, the files living elsewhere.
         dev_scene = s["name"].startswith("rack-") and "control" not in s["name"]
-        if not (dev_scene or s["name"] in ("columbus-approaches", "columbus-module-views", "flat-clutter")):
+        if not (dev_scene or s["name"] in ("columbus-approaches", "columbus-module-views", "flat-clutter", "flat-sweep")):
             return
         text = json.dumps(s).replace('"../assets/', '"' + os.path.normpath(ASSETS) + '/')
         s = json.loads(text)
@@ -745,8 +746,53 @@ def flat_clutter():
                       {"label": "flat-clutter-close", "position": [0.45, 0.4, 0.15], "rpy_deg": [-20, 10, 10],
                        "frames": 40, "to": {"position": [0.5, -0.4, -0.15], "rpy_deg": [20, -10, -20]}}]}
 
+def dev_sweep():
+    """The development set's sweep: sweep()'s kind of scene (lateral passes
+    along a flat wall past vertical ISS handrails, each rail crossing the
+    whole image, its first and last frames at the image's edges) with the
+    rails' places and lengths, the station's clutter around each and the
+    passes' distances, heights and attitudes drawn from a seed, so that a
+    rail at the edge of the view is studied on other frames than the scored
+    sweep's. Written only with --dev."""
+    rng = random.Random(2401)
+    u = rng.uniform
+    flat = FlatLayout(WALL_X)
+    rails, cables, boxes = [], [], []
+    y = -0.9
+    for _ in range(3):
+        length = rng.choice((0.202, 0.531, 0.762, 1.040))
+        foot_z = u(-0.15, 0.15)
+        rails.append({"kind": "iss", "foot": [0, r4(y), r4(foot_z)], "normal": [1, 0, 0], "axis": [0, 0, 1],
+                      "length": length})
+        more_cables, more_boxes = clutter_on(flat, rng, length)
+        for cab in more_cables:
+            cab["points"] = [[p[0], p[1] + y, p[2] + foot_z] for p in cab["points"]]
+        for box in more_boxes:
+            box["center"][1] += y
+            box["center"][2] += foot_z
+        cables += more_cables
+        boxes += more_boxes
+        y += u(0.8, 1.0)
+    scene = {"walls": [WALL], "handrails": rails, "cables": cables, "boxes": boxes}
+    first, last = rails[0]["foot"][1], rails[-1]["foot"][1]
+    poses = []
+    for k, distance in enumerate((u(0.5, 0.6), u(0.7, 0.8), u(0.9, 1.0))):
+        z0, z1 = u(-0.1, 0.1), u(-0.1, 0.1)
+        rpy0 = [r4(u(-5, 5)), r4(u(-5, 5)), r4(u(-8, 8))]
+        rpy1 = [r4(u(-5, 5)), r4(u(-5, 5)), r4(u(-8, 8))]
+        ends = (first - 0.7 * distance, last + 0.7 * distance)
+        if k % 2:
+            ends = ends[::-1]
+        poses.append({"label": "dev-sweep-%d" % k, "position": [r4(distance), r4(ends[0]), r4(z0)], "rpy_deg": rpy0,
+                      "frames": 60, "to": {"position": [r4(distance), r4(ends[1]), r4(z1)], "rpy_deg": rpy1}})
+    return {"name": "flat-sweep",
+            "description": "Three lateral passes along a flat wall with the station's clutter past three vertical ISS "
+                           "handrails, each rail crossing the whole image (rails, clutter and passes drawn from a "
+                           "seed; development set only).",
+            "seed": 2401, "frame_rate_hz": 5, "gripper_angle_deg": 0, "scene": scene, "poses": poses}
+
 rack_scenarios += [columbus_approaches(), columbus_views()]
 if DEV_DIR is not None:
-    rack_scenarios.append(flat_clutter())
+    rack_scenarios += [flat_clutter(), dev_sweep()]
 for s in rack_scenarios:
     write(s)

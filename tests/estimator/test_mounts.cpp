@@ -88,6 +88,31 @@ void test_surfaces_too_far_from_the_plane_are_not_mounts(void**) {
   }
 }
 
+// Faces closer than a rack's least face step (1 cm) merge into one peak
+// under the depth noise of a metre's range, at a level between them: a
+// face 5 cm proud (the most a face stands off the plane) beside one 5.9 cm
+// proud made one peak at 5.9 cm, past mount_search_m, and the seat track
+// on the 5 cm face (a rail on it) was never searched
+// (`dev-rack-approach-vertical-8-5`, second development set, depth path,
+// 1.0 to 1.15 m: 6 frames of 120). Such a peak is a surface up to a face
+// step past mount_search_m; a surface further out is not (the test above).
+void test_a_face_merged_past_the_search_range_is_a_surface(void**) {
+  const DetectorConfig cfg;
+  const float merged = 0.059f, track_top = 0.0627f;
+  const DistanceFrame f({{0.0f, 0.4f}, {merged, 0.25f}, {track_top + kFront, 0.01f}});
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_true(merged > cfg.mount_search_m);
+  assert_true(has_surface(m, merged));
+  assert_true(has_mount(m, merged));
+  float mount = 0.0f;
+  assert_true(find_mount_under_bar(m, cfg, track_top + kFront, 0.005f, &mount));
+  assert_near(mount, merged, 0.0015f);
+  // A step and more past the range: no surface (a box's top).
+  const float beyond = cfg.mount_search_m + kRackFaceStepM + 2.0f * kMountBinM;
+  const DistanceFrame g({{0.0f, 0.4f}, {beyond, 0.25f}, {beyond + kFront, 0.01f}});
+  assert_false(has_surface(find_mount_hypotheses(g.cloud, cfg, g.ws), beyond));
+}
+
 void test_rack_faces_in_front_of_an_empty_bay_are_mounts(void**) {
   // The dominant plane is the back of an empty bay; the rack faces stand
   // 35 and 33.5 cm in front of it, a seat track on the nearer one, and a
@@ -571,6 +596,7 @@ int main() {
       cmocka_unit_test(test_a_bay_view_searches_past_faces_at_a_bar_fronts_height),
       cmocka_unit_test(test_a_comb_of_weak_maxima_leaves_room_for_a_stronger_face),
       cmocka_unit_test(test_the_plane_takes_no_mount_slot),
+      cmocka_unit_test(test_a_face_merged_past_the_search_range_is_a_surface),
       cmocka_unit_test(test_no_bar_anywhere_leaves_the_plane),
       cmocka_unit_test(test_a_small_surface_is_no_surface),
       cmocka_unit_test(test_a_face_too_small_for_a_peak_is_found_under_its_bar),
