@@ -27,8 +27,9 @@ struct Histogram {
     return n;
   }
   // Pixels with distances in [lo, hi].
-  std::uint32_t sum(float lo, float hi) const {
-    int b0 = bin_of(lo), b1 = bin_of(hi);
+  std::uint32_t sum(float lo, float hi) const { return sum_bins(bin_of(lo), bin_of(hi)); }
+  // Pixels in bins b0 to b1, those in the histogram.
+  std::uint32_t sum_bins(int b0, int b1) const {
     b0 = b0 < 0 ? 0 : b0;
     b1 = b1 >= bins ? bins - 1 : b1;
     std::uint32_t n = 0;
@@ -184,33 +185,37 @@ void add_front_peak_mounts(const Histogram& h, const DetectorConfig& cfg, float 
     if (face_echo) return;
     out->offset_m[out->count] = best_m;
     out->front_pixels[out->count] = best_pixels;
+    out->rank_pixels[out->count] = best_pixels;
     ++out->count;
     ++out->front_peak_count;
   }
 }
 
-void add_mount(float offset_m, std::uint32_t front_pixels, std::uint32_t capacity,
-               MountHypotheses* out) {
+void add_mount(float offset_m, std::uint32_t front_pixels, std::uint32_t rank_pixels,
+               std::uint32_t capacity, MountHypotheses* out) {
   for (std::uint32_t k = 0; k < out->count; ++k) {
     if (std::fabs(out->offset_m[k] - offset_m) < kSameMountM) {
-      if (front_pixels > out->front_pixels[k]) {
+      if (rank_pixels > out->rank_pixels[k]) {
         out->offset_m[k] = offset_m;
         out->front_pixels[k] = front_pixels;
+        out->rank_pixels[k] = rank_pixels;
       }
       return;
     }
   }
-  // Insert in order of front pixels, best first; the worst falls off.
+  // Insert in order of rank, best first; the worst falls off.
   std::uint32_t at = out->count;
-  while (at > 0 && out->front_pixels[at - 1] < front_pixels) --at;
+  while (at > 0 && out->rank_pixels[at - 1] < rank_pixels) --at;
   if (at >= capacity) return;
   const std::uint32_t last = out->count < capacity ? out->count : capacity - 1;
   for (std::uint32_t k = last; k > at; --k) {
     out->offset_m[k] = out->offset_m[k - 1];
     out->front_pixels[k] = out->front_pixels[k - 1];
+    out->rank_pixels[k] = out->rank_pixels[k - 1];
   }
   out->offset_m[at] = offset_m;
   out->front_pixels[at] = front_pixels;
+  out->rank_pixels[at] = rank_pixels;
   if (out->count < capacity) ++out->count;
 }
 
@@ -232,6 +237,24 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
   // A surface in the bay's range: the plane is the back of an empty bay.
   bool bay_view = false;
   for (std::uint32_t p = 0; p < peaks; ++p) bay_view |= peak_m[p] >= cfg.mount_bay_min_m;
+  // What ranks the mounts. In a bay view seen obliquely the faces in front
+  // of the back make a ramp of heights: a mount whose window lies on it
+  // collects the ramp's pixels, and five of them outranked a rail's own
+  // face, whose window holds the bar's front and little else (session 37).
+  // There the window's pixels count less those in as wide a window just
+  // above it, where nothing of a bar on that mount lies: a ramp gives as
+  // many there, a bar's front none. Off a bay the plain count ranks: the
+  // same rule there lost 9 frames of the first development set's
+  // dev-rack-table2-iss-mesh-30 (raw path), found through the bar-front
+  // peak's mount, which the reordered list no longer offered (not traced
+  // further), against 7 won.
+  const auto rank_pixels = [&](float mount_m, std::uint32_t in_window) {
+    if (!bay_view) return in_window;
+    const int b0 = h.bin_of(mount_m + front - kFrontWindowM);
+    const int b1 = h.bin_of(mount_m + front + kFrontWindowM);
+    const std::uint32_t above = h.sum_bins(b1 + 1, b1 + 1 + (b1 - b0));
+    return in_window > above ? in_window - above : 0u;
+  };
   const std::uint32_t capacity = bay_view ? cfg.max_mount_hypotheses_bay : cfg.max_mount_hypotheses;
   MountHypotheses out;
   out.dominant_front_pixels = front_pixels(0.0f);
@@ -245,13 +268,16 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
     for (const float mount : {peak_m[p], peak_m[p] + cfg.mount_step_m}) {
       if (std::fabs(mount) < kSameMountM) continue;
       const std::uint32_t n = front_pixels(mount);
-      if (n >= cfg.min_line_inliers) add_mount(mount, n, capacity, &out);
+      if (n >= cfg.min_line_inliers) add_mount(mount, n, rank_pixels(mount, n), capacity, &out);
     }
   }
   add_front_peak_mounts(h, cfg, front, &out);
   // Nothing anywhere looks like a bar's front: the dominant plane alone, so
   // that the frame is judged (and its reason given) as on a flat wall.
-  if (out.count == 0) add_mount(0.0f, front_pixels(0.0f), capacity, &out);
+  if (out.count == 0) {
+    const std::uint32_t n = front_pixels(0.0f);
+    add_mount(0.0f, n, n, capacity, &out);
+  }
   return out;
 }
 

@@ -113,6 +113,45 @@ void test_a_face_merged_past_the_search_range_is_a_surface(void**) {
   assert_false(has_surface(find_mount_hypotheses(g.cloud, cfg, g.ws), beyond));
 }
 
+// In a bay view seen obliquely the faces in front of the bay's back make a
+// ramp of heights, and a mount whose bar front would fall on it collects
+// the ramp's pixels: five such mounts outranked a rail's own face, whose
+// window holds the bar's front and little else, and the bay's five slots
+// were full before it (`dev-rack-table2-iss-0-53`, second development set,
+// raw path, 7 frames of its 30/30/30 deg pose). In a bay view mounts rank
+// by their window's pixels less those in as wide a window just above it,
+// where nothing of a bar on that mount lies: a ramp gives as many there as
+// in the window, a bar's front none.
+void test_a_bay_view_ranks_a_bar_front_over_a_ramp_of_faces(void**) {
+  const DetectorConfig cfg;
+  const float rail_face = 0.355f;
+  std::vector<Heights> layers = {{0.0f, 0.3f}};
+  for (int k = 0; k < 4; ++k) {
+    layers.push_back({0.2925f + 0.0125f * static_cast<float>(k), 0.04f});
+  }
+  // The ramp: from below the rail's face to above every other mount's
+  // window.
+  for (int k = 0; k < 29; ++k) {
+    layers.push_back({0.36f + kMountBinM * static_cast<float>(k), 0.007f});
+  }
+  layers.push_back({rail_face, 0.04f});
+  layers.push_back({rail_face + kFront, 0.012f});
+  const DistanceFrame f(layers);
+  const MountHypotheses m = find_mount_hypotheses(f.cloud, cfg, f.ws);
+  assert_true(has_surface(m, rail_face));
+  assert_true(m.count - m.front_peak_count <= cfg.max_mount_hypotheses_bay);
+  // Among the mounts searched, though more than the bay's five slots show
+  // more front pixels.
+  std::uint32_t rail = kMaxMountHypotheses;
+  for (std::uint32_t k = 0; k < m.count; ++k) {
+    if (std::fabs(m.offset_m[k] - rail_face) < 0.0015f) rail = k;
+  }
+  assert_true(rail < m.count);
+  std::uint32_t more = 0;
+  for (std::uint32_t k = 0; k < m.count; ++k) more += m.front_pixels[k] > m.front_pixels[rail];
+  assert_true(more >= 3);
+}
+
 void test_rack_faces_in_front_of_an_empty_bay_are_mounts(void**) {
   // The dominant plane is the back of an empty bay; the rack faces stand
   // 35 and 33.5 cm in front of it, a seat track on the nearer one, and a
@@ -597,6 +636,7 @@ int main() {
       cmocka_unit_test(test_a_comb_of_weak_maxima_leaves_room_for_a_stronger_face),
       cmocka_unit_test(test_the_plane_takes_no_mount_slot),
       cmocka_unit_test(test_a_face_merged_past_the_search_range_is_a_surface),
+      cmocka_unit_test(test_a_bay_view_ranks_a_bar_front_over_a_ramp_of_faces),
       cmocka_unit_test(test_no_bar_anywhere_leaves_the_plane),
       cmocka_unit_test(test_a_small_surface_is_no_surface),
       cmocka_unit_test(test_a_face_too_small_for_a_peak_is_found_under_its_bar),

@@ -33,6 +33,10 @@ struct MountHypotheses {
   float offset_m[kMaxMountHypotheses] = {};
   // Pixels where that mount puts the bar's front face.
   std::uint32_t front_pixels[kMaxMountHypotheses] = {};
+  // What ranked the mount: in a bay view those pixels less the ones in as
+  // wide a window just above it, where nothing of a bar on that mount lies
+  // (find_mount_hypotheses); elsewhere the pixels themselves.
+  std::uint32_t rank_pixels[kMaxMountHypotheses] = {};
   // How many of the mounts, the last ones, were read off bar-front peaks
   // rather than surfaces (add_front_peak_mounts).
   std::uint32_t front_peak_count = 0;
