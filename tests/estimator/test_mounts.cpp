@@ -107,6 +107,17 @@ void test_a_face_merged_past_the_search_range_is_a_surface(void**) {
   float mount = 0.0f;
   assert_true(find_mount_under_bar(m, cfg, track_top + kFront, 0.005f, &mount));
   assert_near(mount, merged, 0.0015f);
+  // A bump on a slope of heights there is no face: it does not fall to
+  // half within a face step (clutter-only's flat wall).
+  std::vector<Heights> slope = {{0.0f, 0.5f}, {0.058f, 0.004f}};
+  for (int k = 0; k < 14; ++k) {
+    slope.push_back({0.04f + kMountBinM * static_cast<float>(k), 0.004f});
+  }
+  const DistanceFrame s(slope);
+  const MountHypotheses on_slope = find_mount_hypotheses(s.cloud, cfg, s.ws);
+  for (std::uint32_t k = 0; k < on_slope.surface_count; ++k) {
+    assert_true(on_slope.surface_m[k] <= cfg.mount_search_m);
+  }
   // A step and more past the range: no surface (a box's top).
   const float beyond = cfg.mount_search_m + kRackFaceStepM + 2.0f * kMountBinM;
   const DistanceFrame g({{0.0f, 0.4f}, {beyond, 0.25f}, {beyond + kFront, 0.01f}});
