@@ -260,10 +260,10 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
   // There the window's pixels count less those in as wide a window just
   // above it, where nothing of a bar on that mount lies: a ramp gives as
   // many there, a bar's front none. Off a bay the plain count ranks: the
-  // same rule there lost 9 frames of the first development set's
-  // dev-rack-table2-iss-mesh-30 (raw path), found through the bar-front
-  // peak's mount, which the reordered list no longer offered (not traced
-  // further), against 7 won.
+  // same rule there lost more than it won on the development sets (9
+  // frames of the first set's dev-rack-table2-iss-mesh-30, raw path, found
+  // through the bar-front peak's mount, which the reordered list no longer
+  // offered; not traced further; 2 won elsewhere).
   const auto rank_pixels = [&](float mount_m, std::uint32_t in_window) {
     if (!bay_view) return in_window;
     const int b0 = h.bin_of(mount_m + front - kFrontWindowM);

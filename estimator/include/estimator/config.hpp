@@ -86,9 +86,9 @@ struct DetectorConfig {
   // plane is a mount, and so is a seat track mount_step_m above it. In
   // front of the plane a peak up to a face step (1 cm) further out is one
   // too, if it stands out as a face's does: two faces that close merge
-  // into one peak under the depth noise, at a level between them. Mounts are tried best first (the most pixels
-  // where that mount puts the bar's front face), at most
-  // max_mount_hypotheses, until one holds a handrail.
+  // into one peak under the depth noise, at a level between them. Mounts
+  // are tried best first (the most pixels where that mount puts the bar's
+  // front face), at most max_mount_hypotheses, until one holds a handrail.
   float mount_search_m = 0.052f;
   // Surfaces this far in front of the dominant plane are mounts too: the
   // plane may be the back of an empty rack bay (about 35 cm deep), with the
