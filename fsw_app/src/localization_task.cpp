@@ -147,7 +147,10 @@ void LocalizationTask::note_sigmas() {
 
 void LocalizationTask::take_handrail(const hrp::handrail_estimate_t& e) {
   handrail_in_.fetch_add(1);
-  if (handrail_measurement_from(e, cfg_.handrail, measurement_.get()) !=
+  if (e.state == hrp::handrail_estimate_t::STATE_BE && !e.deadline_missed) {
+    (void)bar_length_.add_both_ends(e.bar_length_m);
+  }
+  if (handrail_measurement_from(e, cfg_.handrail, bar_length_.length_m(), measurement_.get()) !=
       HandrailMeasurementStatus::kOk) {
     handrail_unusable_.fetch_add(1);
     return;
@@ -206,7 +209,6 @@ void LocalizationTask::publish_health() {
 LocalizationTaskConfig localization_task_config(const AppConfig& cfg) {
   LocalizationTaskConfig c;
   c.filter.T_body_cam = cfg.T_body_cam;
-  c.handrail.bar_length_m = cfg.estimator.handrail.bar_length_m;
   c.handrail.wall_offset_m = cfg.estimator.handrail.bar_center_offset_m;
   return c;
 }

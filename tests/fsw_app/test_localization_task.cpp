@@ -65,6 +65,10 @@ struct Rig {
   fsw_app::Mailbox<hrp::robot_pose_t> pose_box;
   hrp::robot_pose_t pose{};
   bool handrail_on = true;
+  // The bar's true length, and whether the detector sees only its top end
+  // (OE: the origin in the middle of the 0.3 m seen below that end).
+  double bar_length_m = 0.55;
+  bool one_end = false;
   Eigen::Vector3d handrail_offset_cam = Eigen::Vector3d::Zero();
   std::int64_t next_frame_us = 0;
   std::int64_t frame_id = 0;
@@ -107,11 +111,20 @@ struct Rig {
     shift.translation() = handrail_offset_cam;
     T_cam_handrail = shift * T_cam_handrail * noise;
     e.state = hrp::handrail_estimate_t::STATE_BE;
+    e.num_ends = 2;
+    e.bar_length_m = bar_length_m;
+    if (one_end) {
+      const Eigen::Vector3d top_end = T_cam_handrail * Eigen::Vector3d(0, 0, 0.5 * bar_length_m);
+      T_cam_handrail.translation() =
+          T_cam_handrail * Eigen::Vector3d(0, 0, 0.5 * bar_length_m - 0.15);
+      e.state = hrp::handrail_estimate_t::STATE_OE;
+      e.num_ends = 1;
+      e.bar_length_m = 0.0;
+      for (int k = 0; k < 3; ++k) e.ends_cam_m[0][k] = top_end[k];
+    }
     fsw_app::to_msg(T_cam_handrail, &e.T_cam_handrail);
     fsw_app::to_msg(cfg.filter.T_body_cam * T_cam_handrail, &e.T_body_handrail);
     fsw_app::to_msg(Eigen::Isometry3d::Identity(), &e.T_body_target);
-    e.num_ends = 2;
-    e.bar_length_m = 0.55;
     return e;
   }
 
@@ -196,6 +209,50 @@ void test_handrail_pins_the_pose_relative_to_the_bar(void**) {
 
 std::uint32_t count(const Rig& r, loc::MeasurementKind k, loc::UpdateStatus s) {
   return r.task.filter().counters().count(k, s);
+}
+
+// A 0.76 m bar (the application's configured length is 0.55 m): BE
+// estimates for 10 s teach the task its length, then only the top end is
+// in view. Each OE centre is placed half the learned length from that end,
+// so the estimates agree with the BE ones: none is gated and the pose stays
+// on the bar. (Placed with 0.55 m they would be 10.5 cm off along it: in a
+// HIL perch on approach-iss-mesh, 1.5 cm off between BE and OE frames made
+// the filter's accelerometer bias take the difference, the BE frames were
+// gated after, and the estimate ran 0.5 m along the bar.)
+void test_one_end_of_a_longer_bar_keeps_the_pose(void**) {
+  Rig r(8);
+  r.bar_length_m = 0.76;
+  r.run(10.0);
+  r.one_end = true;
+  double worst = 0.0;
+  for (int k = 0; k < 30; ++k) {
+    r.run(0.5);
+    worst = std::max(worst, r.relative_error_m());
+  }
+  const fsw_app::LocalizerReport rep = fsw_app::localizer_report(r.task);
+  std::printf(
+      "0.76 m bar, top end only for 15 s: relative error worst %.1f mm; accepted %u, "
+      "gated %u\n",
+      1e3 * worst, rep.handrail_accepted, rep.handrail_rejected_gate);
+  assert_int_equal(rep.handrail_rejected_gate, 0);
+  assert_true(rep.handrail_no_end_accepted == 0);
+  assert_true(worst < 0.01);
+}
+
+// Only the top end in view from the start: no length is known, so the OE
+// estimates are used as NE (the along-bar position is not claimed). The map
+// is built only from sightings with an end placed, so none is built.
+void test_one_end_with_no_length_known_is_used_as_no_end(void**) {
+  Rig r(9);
+  r.bar_length_m = 0.76;
+  r.one_end = true;
+  r.run(8.0);
+  const fsw_app::LocalizerReport rep = fsw_app::localizer_report(r.task);
+  std::printf("top end only from the start: %u with an end, %u as NE, map %s\n",
+              rep.handrail_accepted, rep.handrail_no_end_accepted,
+              rep.map_valid ? "valid" : "not built");
+  assert_int_equal(rep.handrail_map_sightings, 0);
+  assert_false(rep.map_valid);
 }
 
 // The handrail lost mid-approach: the filter goes on with the GP, its
@@ -414,6 +471,8 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_follows_the_gp_without_the_handrail),
       cmocka_unit_test(test_handrail_pins_the_pose_relative_to_the_bar),
+      cmocka_unit_test(test_one_end_of_a_longer_bar_keeps_the_pose),
+      cmocka_unit_test(test_one_end_with_no_length_known_is_used_as_no_end),
       cmocka_unit_test(test_handrail_lost_falls_back_on_the_gp),
       cmocka_unit_test(test_surveyed_handrail_gives_the_world_pose),
       cmocka_unit_test(test_imu_silent_half_a_second_is_bridged),

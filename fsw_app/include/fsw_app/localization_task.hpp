@@ -18,6 +18,7 @@
 
 #include "estimator/localization/localization_filter.hpp"
 #include "fsw_app/app_config.hpp"
+#include "fsw_app/bar_length_tally.hpp"
 #include "fsw_app/handrail_measurement.hpp"
 #include "fsw_app/lcm_hub.hpp"
 #include "fsw_app/periodic_thread.hpp"
@@ -107,6 +108,7 @@ class LocalizationTask {
   const hal::Clock& clock_;
   std::unique_ptr<estimator::localization::LocalizationFilter> filter_;
   std::unique_ptr<estimator::localization::HandrailMeasurement> measurement_;
+  BarLengthTally bar_length_;  // the bar's length from BE estimates, for OE ones
   MessageQueue<hrp::imu_sample_t, 32> imu_queue_;
   MessageQueue<hrp::gp_pose_t, 4> gp_queue_;
   Mailbox<hrp::handrail_estimate_t> handrail_box_;
