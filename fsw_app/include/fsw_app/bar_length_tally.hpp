@@ -6,7 +6,10 @@
 // four ISS types run from 0.20 to 1.04 m), so a configured length would put
 // an OE centre 10 cm off on a 0.76 m bar when 0.55 m is configured. Until
 // the BE lengths agree, an OE estimate is used as one with no end in view
-// (the along-bar position is not claimed). Fixed memory, no allocation.
+// (the along-bar position is not claimed). The length is kept when the
+// filter drops its handrail map: a map is dropped for a transient far more
+// often than for another handrail, and another handrail's BE lengths take
+// over after three. Fixed memory, no allocation.
 #include <array>
 
 namespace fsw_app {
