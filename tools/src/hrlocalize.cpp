@@ -15,7 +15,9 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
+#include "estimator/localization/handrail_map.hpp"
 #include "estimator/localization/status.hpp"
 #include "fsw_app/app_config.hpp"
 #include "fsw_app/lcm_hub.hpp"
@@ -24,6 +26,7 @@
 #include "hal/clock.hpp"
 #include "hrp/handrail_estimate_t.hpp"
 #include "hrp/robot_pose_t.hpp"
+#include "sim_hal/scenario.hpp"
 
 namespace {
 
@@ -39,9 +42,14 @@ void usage(FILE* out) {
                "the filter's verdict, features used and gated, NIS over its degrees of\n"
                "freedom, and the filter's position error against the log's %s\n"
                "(a HIL run's truth), world frame, mm; then a summary: the verdicts counted,\n"
-               "and the error while the handrail held the pose and over the whole run.\n\n"
+               "and the error while the handrail held the pose and over the whole run.\n"
+               "With --scenario (the run's scene) the error is also scored relative to the\n"
+               "handrail, as perching needs it: the body in the filter's map against the\n"
+               "body in the true handrail frame, out from the wall, across and along the\n"
+               "bar; the world error carries the map's own error besides.\n\n"
                "options:\n"
                "  --config FILE   fsw_app configuration (default fsw_app/config/fsw_app.json)\n"
+               "  --scenario FILE the run's scenario (sim_hal/scenarios/*.json): relative error\n"
                "  --quiet         the summary only\n"
                "  -h, --help      this text\n\n"
                "exit status: 0 when the log was replayed; 1 when it holds no localizer\n"
@@ -55,6 +63,7 @@ void usage(FILE* out) {
 struct Options {
   std::string log;
   std::string config = "fsw_app/config/fsw_app.json";
+  std::string scenario;  // empty: the world error only
   bool quiet = false;
 };
 
@@ -67,12 +76,12 @@ int parse_options(int argc, char** argv, Options* o) {
       return 1;
     } else if (a == "--quiet") {
       o->quiet = true;
-    } else if (a == "--config") {
+    } else if (a == "--config" || a == "--scenario") {
       if (i + 1 >= argc) {
-        std::fprintf(stderr, "hrlocalize: --config needs a file (see --help)\n");
+        std::fprintf(stderr, "hrlocalize: %s needs a file (see --help)\n", a.c_str());
         return 2;
       }
-      o->config = argv[++i];
+      (a == "--config" ? o->config : o->scenario) = argv[++i];
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "hrlocalize: unknown option '%s' (see --help)\n", a.c_str());
       return 2;
@@ -121,6 +130,43 @@ std::array<std::uint32_t, 2 * loc::kNumUpdateStatus> handrail_counts(
   return c;
 }
 
+// The scene's handrails in the filter's map convention: x = wall normal,
+// z = along the bar, origin on the centre line at the bar's middle.
+std::vector<Eigen::Isometry3d> true_handrail_frames(const sim_hal::Scenario& sc) {
+  std::vector<Eigen::Isometry3d> frames;
+  for (const sim_hal::Handrail& h : sc.scene.handrails) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    const Eigen::Vector3d axis = (h.end_point(1) - h.end_point(0)).normalized();
+    T.linear().col(0) = h.normal.normalized();
+    T.linear().col(1) = axis.cross(T.linear().col(0));
+    T.linear().col(2) = axis;
+    T.translation() = 0.5 * (h.end_point(0) + h.end_point(1));
+    frames.push_back(T);
+  }
+  return frames;
+}
+
+// The body's error relative to the handrail the filter mapped (the scene's
+// handrail nearest the map's origin, its axis sign matched to the map's),
+// in that handrail's frame: x out from the wall, y across, z along the bar.
+Eigen::Vector3d relative_error_m(const std::vector<Eigen::Isometry3d>& handrails,
+                                 const loc::HandrailMap& map, const Eigen::Isometry3d& T_est,
+                                 const Eigen::Isometry3d& T_true) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < handrails.size(); ++k) {
+    if ((handrails[k].translation() - map.T_world_handrail.translation()).norm() <
+        (handrails[best].translation() - map.T_world_handrail.translation()).norm()) {
+      best = k;
+    }
+  }
+  Eigen::Isometry3d T_wh = handrails[best];
+  if (map.T_world_handrail.linear().col(2).dot(T_wh.linear().col(2)) < 0.0) {
+    T_wh.linear() = loc::flip_axis(T_wh.linear());
+  }
+  const Eigen::Vector3d p_rel = (T_wh * map.T_world_handrail.inverse() * T_est).translation();
+  return T_wh.linear().transpose() * (p_rel - T_true.translation());
+}
+
 bool is_input(const std::string& channel) {
   return channel == fsw_app::channel::kImuSample || channel == fsw_app::channel::kGpPose ||
          channel == fsw_app::channel::kHandrailEstimate;
@@ -139,6 +185,20 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "hrlocalize: %s\n", error.c_str());
     return 2;
   }
+  std::vector<Eigen::Isometry3d> handrails;
+  if (!o.scenario.empty()) {
+    sim_hal::Scenario sc;
+    if (!sim_hal::load_scenario(o.scenario, &sc, &error)) {
+      std::fprintf(stderr, "hrlocalize: --scenario: %s\n", error.c_str());
+      return 2;
+    }
+    handrails = true_handrail_frames(sc);
+    if (handrails.empty()) {
+      std::fprintf(stderr, "hrlocalize: --scenario: %s has no handrail to score against\n",
+                   o.scenario.c_str());
+      return 2;
+    }
+  }
   lcm::LogFile log(o.log, "r");
   if (!log.good()) {
     std::fprintf(stderr, "hrlocalize: %s: cannot open as an LCM log (%s)\n", o.log.c_str(),
@@ -155,21 +215,24 @@ int main(int argc, char** argv) {
 
   std::int64_t t0_us = -1;  // the first estimate's capture time (the robot's clock)
   bool have_truth = false;
-  Eigen::Vector3d p_true = Eigen::Vector3d::Zero();
-  Stat err_held, err_all;
+  Eigen::Isometry3d T_true = Eigen::Isometry3d::Identity();
+  Stat err_held, err_all, across_held, along_held;
   long inputs = 0, estimates = 0, bad_estimates = 0, events = 0;
   long verdicts[loc::kNumUpdateStatus] = {};
   if (!o.quiet) {
+    // World axes, or with a scenario the handrail's: out, across, along.
+    const bool rel = !handrails.empty();
     std::printf("%8s %-3s %-24s %5s %5s %11s %8s %8s %8s\n", "t s", "st", "verdict", "used",
-                "gated", "nis/dof", "x mm", "y mm", "z mm");
+                "gated", "nis/dof", rel ? "out mm" : "x mm", rel ? "across" : "y mm",
+                rel ? "along" : "z mm");
   }
   for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
     ++events;
     if (e->channel == fsw_app::channel::kTruthPose) {
       hrp::robot_pose_t m;
       if (m.decode(e->data, 0, e->datalen) >= 0) {
-        p_true = fsw_app::from_msg(m.T_world_body).translation();
-        have_truth = p_true.allFinite();
+        T_true = fsw_app::from_msg(m.T_world_body);
+        have_truth = T_true.matrix().allFinite();
       }
       continue;
     }
@@ -193,11 +256,24 @@ int main(int argc, char** argv) {
     task.step();
     drain();
     const loc::PoseEstimate pose = task.filter().estimate();
-    const Eigen::Vector3d err_mm = 1e3 * (pose.p_world_body_m - p_true);
+    Eigen::Vector3d err_mm = 1e3 * (pose.p_world_body_m - T_true.translation());
     const bool scored = have_truth && pose.initialized;
     if (scored) {
       err_all.add(err_mm.norm());
       if (pose.handrail_holding) err_held.add(err_mm.norm());
+    }
+    const loc::HandrailMap& map = task.filter().handrail_map();
+    if (scored && !handrails.empty()) {
+      Eigen::Isometry3d T_est = Eigen::Isometry3d::Identity();
+      T_est.linear() = pose.q_world_body.normalized().toRotationMatrix();
+      T_est.translation() = pose.p_world_body_m;
+      // Before a map there is nothing to be relative to: the line shows "-".
+      err_mm = map.valid ? Eigen::Vector3d(1e3 * relative_error_m(handrails, map, T_est, T_true))
+                         : Eigen::Vector3d::Constant(std::nan(""));
+      if (map.valid && pose.handrail_holding) {
+        across_held.add(std::hypot(err_mm.x(), err_mm.y()));
+        along_held.add(std::fabs(err_mm.z()));
+      }
     }
     if (!is_estimate) continue;
     ++estimates;
@@ -218,7 +294,7 @@ int main(int argc, char** argv) {
     if (status >= 0) ++verdicts[status];
     if (o.quiet) continue;
     const double t_s = 1e-6 * static_cast<double>(est.capture_utime - t0_us);
-    if (scored) {
+    if (scored && err_mm.allFinite()) {
       std::printf("%8.2f %-3s %-24s %5d %5d %5.1f/%-5d %+8.1f %+8.1f %+8.1f\n", t_s,
                   state_name(est.state), verdict, u.features_used, u.features_gated, u.nis, u.dof,
                   err_mm.x(), err_mm.y(), err_mm.z());
@@ -249,6 +325,12 @@ int main(int argc, char** argv) {
   } else {
     std::printf("position error: no %s in the log to score against\n",
                 fsw_app::channel::kTruthPose);
+  }
+  if (across_held.n > 0) {
+    std::printf(
+        "relative to the handrail, while it held: across the bar mean %.1f mm, max %.1f mm; "
+        "along it mean %.1f mm, max %.1f mm (%ld poses)\n",
+        across_held.mean(), across_held.max, along_held.mean(), along_held.max, across_held.n);
   }
   if (inputs == 0) {
     std::fprintf(stderr,
