@@ -203,13 +203,24 @@ void PerchSequence::fault(FaultCode code, const IoResult& io, const char* detail
                   to_string(status_.state), detail);
   }
   const bool servo_alarm = is_servo(io.device) && (io.error_bits & kServoAlarmBits) != 0;
+  // A robot that no longer knows where it is must not keep an open gripper
+  // out toward a wall: the arm folds (the devices are healthy).
+  const bool fold = code == FaultCode::kPoseLost && !holding_handrail();
   enter(PerchState::kFault);
-  enter_safe_state(servo_alarm);
+  enter_safe_state(servo_alarm, fold);
 }
 
-void PerchSequence::enter_safe_state(bool servo_alarm) {
+void PerchSequence::enter_safe_state(bool servo_alarm, bool fold) {
   // Best effort: the devices may be the cause, so failures here are not
   // faults of their own.
+  if (fold && status_.joints_valid) {
+    if (status_.gripper_valid && status_.gripper.calibrated) {
+      (void)gripper_.go_to(config_.stow_gripper_counts, config_.stow_speed);
+    }
+    status_.joint_goal = config_.geometry.stow;
+    (void)joints_.move_to(status_.joint_goal, config_.joint_speed_rad_s);
+    return;
+  }
   if (servo_alarm) {
     (void)joints_.set_torque(false);  // limp rather than fight an overload
   } else if (status_.joints_valid) {
@@ -230,6 +241,9 @@ void PerchSequence::enter(PerchState state) {
   entry_owed_ = false;
   entry_failures_ = 0;
   switch (state) {
+    case PerchState::kDeploying:
+      approach_started_us_ = now_us_;
+      break;
     case PerchState::kInit:
       joint_failures_ = gripper_failures_ = 0;
       // A restart may find a servo in alarm or the board in safe start
@@ -310,6 +324,24 @@ void PerchSequence::run_entry_action() {
     return;
   }
   fault(fault_for_io(io), io, what);
+}
+
+bool PerchSequence::pose_lost() {
+  // Only while flying toward a perch: CLOSING and GRASP_CHECK finish on
+  // the bar (holding it needs no pose), and a calibration for a stow
+  // leads away from the wall anyway.
+  if (status_.state == PerchState::kCalibrating && after_calibration_ != PerchState::kOpening) {
+    return false;
+  }
+  if (approach_.pose_usable || approach_.pose_unusable_since_us < 0) return false;
+  // Counted from the perch's start at the earliest: a pose missing before
+  // PERCH (a filter still starting) gets the whole allowance.
+  const std::int64_t since = approach_.pose_unusable_since_us > approach_started_us_
+                                 ? approach_.pose_unusable_since_us
+                                 : approach_started_us_;
+  if (now_us_ - since <= config_.pose_lost_ms * 1000LL) return false;
+  fault(FaultCode::kPoseLost, {}, "no usable robot pose during the approach");
+  return true;
 }
 
 void PerchSequence::start_stowing() {
@@ -399,6 +431,7 @@ void PerchSequence::advance_state() {
       }
       return;
     case PerchState::kDeploying:
+      if (pose_lost()) return;
       if (!joints_at(config_.geometry.deploy)) return;
       if (g_ok && !g.calibrated) {
         after_calibration_ = PerchState::kOpening;
@@ -408,14 +441,17 @@ void PerchSequence::advance_state() {
       }
       return;
     case PerchState::kCalibrating:
+      if (pose_lost()) return;
       if (g_ok && g.calibrated && !g.moving && in_state_us > 100000) enter(after_calibration_);
       return;
     case PerchState::kOpening:
+      if (pose_lost()) return;
       if (g_ok && g.position_counts <= config_.open_done_counts && !g.moving) {
         enter(PerchState::kGripperOpen);
       }
       return;
     case PerchState::kGripperOpen: {
+      if (pose_lost()) return;
       const std::int64_t seen = approach_.handrail_seen_us > status_.state_entered_us
                                     ? approach_.handrail_seen_us
                                     : status_.state_entered_us;

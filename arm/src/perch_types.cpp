@@ -93,6 +93,8 @@ const char* to_string(FaultCode code) {
       return "GRASP_FAILED";
     case FaultCode::kHandrailLost:
       return "HANDRAIL_LOST";
+    case FaultCode::kPoseLost:
+      return "POSE_LOST";
     case FaultCode::kGripLost:
       return "GRIP_LOST";
     case FaultCode::kStateTimeout:

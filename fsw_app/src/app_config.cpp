@@ -224,7 +224,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
                  "close_current_limit_ma", "open_done_counts", "stow_gripper_counts",
                  "stow_gripper_tolerance", "grasp_min_counts", "grasp_max_counts",
                  "grasp_min_current_ma", "grasp_settle_ms", "max_grasp_attempts",
-                 "handrail_lost_ms", "io_failures_to_fault", "timeouts_ms"})) {
+                 "handrail_lost_ms", "pose_lost_ms", "io_failures_to_fault", "timeouts_ms"})) {
       return false;
     }
     arm::PerchConfig& p = c.perch;
@@ -249,6 +249,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     s.integer("grasp_settle_ms", &p.grasp_settle_ms, 0, 5000);
     s.integer("max_grasp_attempts", &p.max_grasp_attempts, 1, 10);
     s.integer("handrail_lost_ms", &p.handrail_lost_ms, 100, 60000);
+    s.integer("pose_lost_ms", &p.pose_lost_ms, 100, 60000);
     s.integer("io_failures_to_fault", &p.io_failures_to_fault, 1, 20);
     if (!s.ok()) return false;
     if (p.grasp_min_counts >= p.grasp_max_counts) {
@@ -322,7 +323,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     Section s(*v, "approach", path, error);
     if (!s.only({"standoff_m", "max_speed_mps", "max_rate_rps", "gain_per_s",
                  "integral_gain_per_s2", "brake_mps2", "settle_speed_mps", "position_tolerance_m",
-                 "angle_tolerance_deg", "back_off_m", "settle_cycles"})) {
+                 "angle_tolerance_deg", "back_off_m", "settle_cycles", "pose_max_age_ms"})) {
       return false;
     }
     ApproachConfig& a = c.approach;
@@ -339,6 +340,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     a.angle_tolerance_rad = deg * kDeg;
     s.number("back_off_m", &a.back_off_m, 0.05, 2.0);
     s.integer("settle_cycles", &a.settle_cycles, 1, 1000);
+    s.integer("pose_max_age_ms", &a.pose_max_age_ms, 20, 5000);
     if (!s.ok()) return false;
   }
   if (!top.ok()) return false;

@@ -45,6 +45,8 @@ void ArmTask::cycle() {
     in.handrail_seen_us = approach_.handrail_seen_utime;
     in.at_target = approach_.at_target;
     in.backed_off = approach_.backed_off;
+    in.pose_usable = approach_.pose_usable;
+    in.pose_unusable_since_us = approach_.pose_unusable_since_utime;
   }
   sequence_.set_approach(in);
   sequence_.step(clock_.now_us());

@@ -16,6 +16,16 @@ const char* to_string(InputReject reason) {
       return "OUT_OF_RANGE";
     case InputReject::kStale:
       return "STALE";
+    case InputReject::kBadLength:
+      return "BAD_LENGTH";
+    case InputReject::kDecoderFault:
+      return "DECODER_FAULT";
+    case InputReject::kFuture:
+      return "FUTURE";
+    case InputReject::kSequence:
+      return "SEQUENCE";
+    case InputReject::kRateLimited:
+      return "RATE_LIMITED";
   }
   return "UNKNOWN";
 }

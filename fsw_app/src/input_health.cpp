@@ -2,18 +2,24 @@
 
 namespace fsw_app {
 
+static_assert(kInputRejectKinds <= hrp::input_health_t::MAX_REASONS,
+              "input_health_t holds every refusal reason");
+
 InputHealthReporter::InputHealthReporter(LcmHub& hub, const std::string& tasks)
-    : hub_(hub), publisher_(hub, channel::kInputHealth, 8192) {
+    : hub_(hub), publisher_(hub, channel::kInputHealth, 16384) {
   std::size_t n = 0;
   const ChannelInput* inputs = hub_.inputs(&n);
   msg_.tasks = tasks;
   msg_.num_channels = static_cast<std::int32_t>(n);
   msg_.channel.resize(n);
   for (std::size_t k = 0; k < n; ++k) msg_.channel[k] = inputs[k].channel;
-  for (auto* v : {&msg_.accepted, &msg_.undecodable, &msg_.trailing_bytes, &msg_.not_finite,
-                  &msg_.out_of_range, &msg_.stale}) {
-    v->assign(n, 0);
+  msg_.num_reasons = kInputRejectKinds;
+  msg_.reason.resize(kInputRejectKinds);
+  for (int r = 0; r < kInputRejectKinds; ++r) {
+    msg_.reason[r] = to_string(static_cast<InputReject>(r));
   }
+  msg_.accepted.assign(n, 0);
+  msg_.rejected.assign(n, std::vector<std::int64_t>(kInputRejectKinds, 0));
 }
 
 const hrp::input_health_t& InputHealthReporter::refresh(std::int64_t now_us) {
@@ -22,15 +28,10 @@ const hrp::input_health_t& InputHealthReporter::refresh(std::int64_t now_us) {
   msg_.utime = now_us;
   for (std::size_t k = 0; k < n && k < msg_.channel.size(); ++k) {
     const InputCounts& c = *inputs[k].counts;
-    const auto rejected = [&c](InputReject r) {
-      return static_cast<std::int64_t>(c.rejected[static_cast<int>(r)].load());
-    };
     msg_.accepted[k] = static_cast<std::int64_t>(c.accepted.load());
-    msg_.undecodable[k] = rejected(InputReject::kUndecodable);
-    msg_.trailing_bytes[k] = rejected(InputReject::kTrailingBytes);
-    msg_.not_finite[k] = rejected(InputReject::kNotFinite);
-    msg_.out_of_range[k] = rejected(InputReject::kOutOfRange);
-    msg_.stale[k] = rejected(InputReject::kStale);
+    for (int r = 0; r < kInputRejectKinds; ++r) {
+      msg_.rejected[k][r] = static_cast<std::int64_t>(c.rejected[r].load());
+    }
   }
   return msg_;
 }
@@ -41,9 +42,8 @@ bool InputHealthReporter::publish(std::int64_t now_us) {
 
 std::int64_t InputHealthReporter::rejected_total() const {
   std::int64_t n = 0;
-  for (std::size_t k = 0; k < msg_.channel.size(); ++k) {
-    n += msg_.undecodable[k] + msg_.trailing_bytes[k] + msg_.not_finite[k] + msg_.out_of_range[k] +
-         msg_.stale[k];
+  for (const auto& row : msg_.rejected) {
+    for (std::int64_t c : row) n += c;
   }
   return n;
 }

@@ -88,7 +88,7 @@ InputReject input_reject_of(FrameMsgStatus status) {
 
 }  // namespace
 
-void LcmDepthCamera::deliver(const void* data, std::uint32_t size) {
+void LcmDepthCamera::deliver(const void* data, std::uint32_t size, std::int64_t /*now_us*/) {
   if (!capturing_.load() || listener_ == nullptr) return;
   const FrameMsgStatus status =
       decode_depth_frame(data, size, static_cast<std::size_t>(max_width_) * max_height_, &msg_);

@@ -4,7 +4,13 @@
 
 namespace fsw_app {
 
-LcmHub::LcmHub(const std::string& url) : url_(url), lcm_(url) {}
+const hal::Clock& LcmHub::host_clock() {
+  static const hal::MonotonicClock clock;
+  return clock;
+}
+
+LcmHub::LcmHub(const std::string& url, const hal::Clock* clock)
+    : url_(url), clock_(clock), lcm_(url) {}
 
 LcmHub::~LcmHub() {
   stop();
@@ -22,7 +28,11 @@ void LcmHub::subscribe_all(RawSink sink, void* user) {
   lcm_.subscribeFunction(
       ".*",
       +[](const lcm::ReceiveBuffer* rbuf, const std::string& channel, LcmHub* hub) {
-        hub->sink_(hub->sink_user_, channel, *rbuf);
+        try {
+          hub->sink_(hub->sink_user_, channel, *rbuf);
+        } catch (...) {
+          hub->receiver_faults_.fetch_add(1, std::memory_order_relaxed);
+        }
       },
       this);
 }

@@ -188,18 +188,18 @@ void LocalizationTask::publish_health() {
   h.handrail_map_valid = est.handrail_map_valid;
   const loc::FilterCounters& c = filter_->counters();
   for (int k = 0; k < loc::kNumImuStatus; ++k)
-    h.imu_counts[k] = static_cast<std::int32_t>(c.imu[k]);
+    h.imu_counts[k] = static_cast<std::int64_t>(c.imu[k]);
   const auto kind = [&c](loc::MeasurementKind m, int s) {
-    return static_cast<std::int32_t>(c.updates[static_cast<std::size_t>(m)][s]);
+    return static_cast<std::int64_t>(c.updates[static_cast<std::size_t>(m)][s]);
   };
   for (int s = 0; s < loc::kNumUpdateStatus; ++s) {
     h.gp_counts[s] = kind(loc::MeasurementKind::kGpPose, s);
     h.handrail_ends_counts[s] = kind(loc::MeasurementKind::kHandrailEnds, s);
     h.handrail_no_end_counts[s] = kind(loc::MeasurementKind::kHandrailNoEnd, s);
   }
-  h.features_gated = static_cast<std::int32_t>(c.features_gated);
-  h.imu_seq_gaps = static_cast<std::int32_t>(imu_seq_gaps_.load());
-  h.handrail_unusable = static_cast<std::int32_t>(handrail_unusable_.load());
+  h.features_gated = static_cast<std::int64_t>(c.features_gated);
+  h.imu_seq_gaps = static_cast<std::int64_t>(imu_seq_gaps_.load());
+  h.handrail_unusable = static_cast<std::int64_t>(handrail_unusable_.load());
   h.position_sigma_m = std::sqrt(est.pose_cov.diagonal().head<3>().maxCoeff());
   h.attitude_sigma_rad = std::sqrt(est.pose_cov.diagonal().tail<3>().maxCoeff());
   health_pub_.publish(h);

@@ -515,6 +515,7 @@ int main(int argc, char** argv) {
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   hub.stop();
   summary.inputs = input_health.refresh(clock.now_us());
+  summary.receiver_faults = hub.receiver_faults();
 
   health_box.read(&summary.health);
   arm_box.read(&summary.arm);

@@ -55,6 +55,14 @@ void ApproachController::servo_to(const Eigen::Isometry3d& T_world_body,
   out->velocity.hold = false;
 }
 
+bool ApproachController::pose_usable(std::int64_t now_us, const hrp::robot_pose_t* pose) const {
+  if (pose == nullptr) return false;
+  if (pose->source != hrp::robot_pose_t::SOURCE_FILTER || pose->lost) return false;
+  // A pose dated ahead of this clock was refused on receipt; one this old
+  // is where the robot was, not where it is.
+  return now_us - pose->utime <= cfg_.pose_max_age_ms * 1000LL;
+}
+
 ApproachOutput ApproachController::step(std::int64_t now_us, const hrp::robot_pose_t* pose,
                                         std::int8_t arm_state) {
   using A = hrp::arm_state_t;
@@ -65,7 +73,16 @@ ApproachOutput ApproachController::step(std::int64_t now_us, const hrp::robot_po
   out.velocity.utime = out.status.utime = now_us;
   out.velocity.hold = true;
   out.status.handrail_seen_utime = handrail_seen_us_;
-  if (!pose || !have_target_) {
+  // No pose to fly on: hold still, and say since when (the arm aborts the
+  // perch if it lasts).
+  out.status.pose_usable = pose_usable(now_us, pose);
+  if (out.status.pose_usable) {
+    pose_unusable_since_us_ = -1;
+  } else if (pose_unusable_since_us_ < 0) {
+    pose_unusable_since_us_ = now_us;
+  }
+  out.status.pose_unusable_since_utime = pose_unusable_since_us_;
+  if (!out.status.pose_usable || !have_target_) {
     settled_ = 0;
     integral_.setZero();
     return out;

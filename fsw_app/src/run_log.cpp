@@ -21,7 +21,20 @@ bool RunLog::open(const std::string& path, std::string* error) {
 
 void RunLog::fail(const char* what, int err) {
   failure_ = std::string(what) + " failed after " + std::to_string(events_) +
-             " messages: " + std::strerror(err != 0 ? err : EIO);
+             " messages recorded: " + std::strerror(err != 0 ? err : EIO);
+}
+
+void RunLog::flush_buffered(const char* what) {
+  std::FILE* f = file_->getFilePtr();
+  errno = 0;
+  if (std::fflush(f) != 0 || std::ferror(f)) {
+    if (failure_.empty()) fail(what, errno);
+    lost_ += buffered_;
+  } else {
+    events_ += buffered_;
+    depth_frames_ += buffered_depth_frames_;
+  }
+  buffered_ = buffered_depth_frames_ = 0;
 }
 
 void RunLog::sink(void* user, const std::string& channel, const lcm::ReceiveBuffer& rbuf) {
@@ -42,19 +55,28 @@ void RunLog::sink(void* user, const std::string& channel, const lcm::ReceiveBuff
   // error flag on the stream; either ends the log here.
   if (self->file_->writeEvent(&e) != 0 || std::ferror(self->file_->getFilePtr())) {
     self->fail("writing", errno);
-    ++self->lost_;
+    self->lost_ += self->buffered_ + 1;
+    self->buffered_ = self->buffered_depth_frames_ = 0;
     return;
   }
-  ++self->events_;
-  if (channel == "DEPTH_FRAME") ++self->depth_frames_;
+  ++self->buffered_;
+  if (channel == "DEPTH_FRAME") ++self->buffered_depth_frames_;
+  if (rbuf.recv_utime - self->last_flush_utime_ >= kFlushEvery_us) {
+    self->last_flush_utime_ = rbuf.recv_utime;
+    self->flush_buffered("writing");
+  }
 }
 
 bool RunLog::close() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (!file_) return failure_.empty();
   std::FILE* f = file_->getFilePtr();
-  errno = 0;
-  if ((std::fflush(f) != 0 || std::ferror(f)) && failure_.empty()) fail("flushing", errno);
+  if (failure_.empty()) {
+    flush_buffered("flushing");
+  } else {
+    lost_ += buffered_;
+    buffered_ = buffered_depth_frames_ = 0;
+  }
   errno = 0;
   if (fsync(fileno(f)) != 0 && errno != EINVAL && errno != EROFS && failure_.empty()) {
     fail("syncing", errno);

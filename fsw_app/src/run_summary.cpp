@@ -195,23 +195,26 @@ void print_inputs(const RunSummary& s, std::FILE* out) {
   long long accepted = 0, rejected = 0;
   for (int k = 0; k < in.num_channels; ++k) {
     accepted += in.accepted[k];
-    rejected += in.undecodable[k] + in.trailing_bytes[k] + in.not_finite[k] + in.out_of_range[k] +
-                in.stale[k];
+    for (int r = 0; r < in.num_reasons; ++r) rejected += in.rejected[k][r];
   }
   std::fprintf(out, "  inputs              %lld messages accepted, %lld rejected on %d channels\n",
                accepted, rejected, in.num_channels);
   for (int k = 0; k < in.num_channels; ++k) {
-    const long long counts[] = {in.undecodable[k], in.trailing_bytes[k], in.not_finite[k],
-                                in.out_of_range[k], in.stale[k]};
-    const char* names[] = {"UNDECODABLE", "TRAILING_BYTES", "NOT_FINITE", "OUT_OF_RANGE", "STALE"};
     long long any = 0;
-    for (long long c : counts) any += c;
+    for (int r = 0; r < in.num_reasons; ++r) any += in.rejected[k][r];
     if (any == 0) continue;
     std::fprintf(out, "    %-17s %lld rejected:", in.channel[k].c_str(), any);
-    for (int r = 0; r < 5; ++r) {
-      if (counts[r]) std::fprintf(out, " %s %lld", names[r], counts[r]);
+    for (int r = 0; r < in.num_reasons; ++r) {
+      if (in.rejected[k][r]) {
+        std::fprintf(out, " %s %lld", in.reason[r].c_str(),
+                     static_cast<long long>(in.rejected[k][r]));
+      }
     }
     std::fprintf(out, "\n");
+  }
+  if (s.receiver_faults > 0) {
+    std::fprintf(out, "    %llu exceptions from receivers contained by the hub\n",
+                 static_cast<unsigned long long>(s.receiver_faults));
   }
 }
 
@@ -337,15 +340,13 @@ namespace {
 void write_inputs_json(const hrp::input_health_t& in, std::FILE* f) {
   std::fprintf(f, "\"inputs\": {");
   for (int k = 0; k < in.num_channels; ++k) {
-    std::fprintf(f,
-                 "%s\"%s\": {\"accepted\": %lld, \"rejected\": {\"UNDECODABLE\": %lld, "
-                 "\"TRAILING_BYTES\": %lld, \"NOT_FINITE\": %lld, \"OUT_OF_RANGE\": %lld, "
-                 "\"STALE\": %lld}}",
-                 k ? ", " : "", in.channel[k].c_str(), static_cast<long long>(in.accepted[k]),
-                 static_cast<long long>(in.undecodable[k]),
-                 static_cast<long long>(in.trailing_bytes[k]),
-                 static_cast<long long>(in.not_finite[k]),
-                 static_cast<long long>(in.out_of_range[k]), static_cast<long long>(in.stale[k]));
+    std::fprintf(f, "%s\"%s\": {\"accepted\": %lld, \"rejected\": {", k ? ", " : "",
+                 in.channel[k].c_str(), static_cast<long long>(in.accepted[k]));
+    for (int r = 0; r < in.num_reasons; ++r) {
+      std::fprintf(f, "%s\"%s\": %lld", r ? ", " : "", in.reason[r].c_str(),
+                   static_cast<long long>(in.rejected[k][r]));
+    }
+    std::fprintf(f, "}}");
   }
   std::fprintf(f, "}");
 }

@@ -66,6 +66,7 @@ struct RunSummary {
   std::int64_t log_lost = 0;           // heard after a failed write, not recorded
   std::string log_failure;             // empty: every write succeeded
   std::int64_t frames_published = -1;  // DEPTH_FRAME messages this process sent
+  std::uint64_t receiver_faults = 0;   // exceptions the hub contained (never expected)
   hrp::input_health_t inputs{};        // this process's checked channels
   StopReport stop;
   std::optional<LocalizationScore> localization;  // the simulated world's scoring

@@ -7,7 +7,7 @@
 
 namespace fsw_app {
 
-void SightingTally::deliver(const void* data, std::uint32_t size) {
+void SightingTally::deliver(const void* data, std::uint32_t size, std::int64_t /*now_us*/) {
   InputReject why = InputReject::kUndecodable;
   if (!decode_and_check(data, size, &scratch_, &why)) {
     std::lock_guard<std::mutex> lock(mutex_);

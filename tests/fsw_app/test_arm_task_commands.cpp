@@ -14,8 +14,8 @@
 namespace {
 
 struct Rig {
-  fsw_app::LcmHub hub{"memq://"};
   hal::ManualClock clock{1000000};
+  fsw_app::LcmHub hub{"memq://", clock};
   FakeJoints joints{clock};
   FakeGripper gripper{clock};
   fsw_app::ArmTask task{hub, joints, gripper, arm::PerchConfig{}, clock, 20.0};

@@ -39,7 +39,7 @@ std::uint64_t rejected(const fsw_app::InputCounts& c, InputReject r) {
 
 template <typename Msg>
 void deliver(fsw_app::Mailbox<Msg>* box, const std::vector<std::uint8_t>& bytes) {
-  box->deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  box->deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()), fsw_app::kNoReceiverClock);
 }
 
 // Issue item 1: the last 8 bytes cut; the fingerprint is right.
@@ -116,18 +116,18 @@ void test_command_with_trailing_bytes_is_not_queued(void**) {
   std::vector<std::uint8_t> bytes = encode(abort);
   const std::size_t whole = bytes.size();
   bytes.resize(whole + 64, 0xA5);
-  queue.deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  queue.deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()), fsw_app::kNoReceiverClock);
   hrp::perch_command_t out{};
   assert_false(queue.pop(&out));
   assert_int_equal(rejected(queue.input_counts(), InputReject::kTrailingBytes), 1);
 
   abort.tilt_rad = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::uint8_t> nan_bytes = encode(abort);
-  queue.deliver(nan_bytes.data(), static_cast<std::uint32_t>(nan_bytes.size()));
+  queue.deliver(nan_bytes.data(), static_cast<std::uint32_t>(nan_bytes.size()), fsw_app::kNoReceiverClock);
   assert_false(queue.pop(&out));
   assert_int_equal(rejected(queue.input_counts(), InputReject::kNotFinite), 1);
 
-  queue.deliver(bytes.data(), static_cast<std::uint32_t>(whole));
+  queue.deliver(bytes.data(), static_cast<std::uint32_t>(whole), fsw_app::kNoReceiverClock);
   assert_true(queue.pop(&out));
   assert_int_equal(out.command, hrp::perch_command_t::ABORT);
   assert_int_equal(out.sequence, 9);
@@ -197,8 +197,10 @@ void test_hub_reports_counts_by_channel(void**) {
   assert_string_equal(m.tasks.c_str(), "manager");
   assert_string_equal(m.channel[0].c_str(), "ROBOT_POSE");
   assert_int_equal(m.accepted[0], 1);
-  assert_int_equal(m.undecodable[0], 1);
-  assert_int_equal(m.undecodable[1], 1);
+  const int undecodable = static_cast<int>(InputReject::kUndecodable);
+  assert_string_equal(m.reason[undecodable].c_str(), "UNDECODABLE");
+  assert_int_equal(m.rejected[0][undecodable], 1);
+  assert_int_equal(m.rejected[1][undecodable], 1);
   assert_int_equal(reporter.rejected_total(), 2);
   assert_int_equal(pose_b.input_counts().accepted.load(), 1);  // both receivers judged it
 }

@@ -54,7 +54,7 @@ Eigen::Isometry3d start_pose() {
 
 struct Rig {
   SimClock clock;
-  fsw_app::LcmHub hub{"memq://"};
+  fsw_app::LcmHub hub{"memq://", clock};
   fsw_app::HilSensors sensors;
   fsw_app::LocalizationTaskConfig cfg;
   fsw_app::LocalizationTask task;
@@ -445,8 +445,8 @@ void test_nan_inputs_rejected_and_counted(void**) {
 // The robot's tasks subscribe to ROBOT_POSE, never to the truth: the channel
 // lists of a hub with the localization, estimator and perch-manager tasks.
 void test_no_robot_task_subscribes_to_the_truth(void**) {
-  fsw_app::LcmHub hub("memq://");
   SimClock clock;
+  fsw_app::LcmHub hub("memq://", clock);
   fsw_app::LocalizationTask localizer(hub, fsw_app::LocalizationTaskConfig{}, clock);
   fsw_app::FrameRing ring(3, 224, 171);
   fsw_app::CameraTask camera(ring, 224, 171);

@@ -55,6 +55,8 @@ struct Loop {
       now_us += 10000;
       if (k % 5 == 0) {
         hrp::robot_pose_t pose{};
+        pose.utime = now_us;
+        pose.source = hrp::robot_pose_t::SOURCE_FILTER;
         fsw_app::to_msg(flyer.pose(), &pose.T_world_body);
         for (int i = 0; i < 3; ++i) pose.velocity_mps[i] = flyer.velocity()[i];
         out = ctl.step(now_us, &pose, arm_state);

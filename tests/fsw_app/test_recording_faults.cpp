@@ -105,8 +105,9 @@ void test_recording_frames_over_udpm_loses_none(void**) {
 }
 
 // A log that cannot be written (found from outside: --log /dev/full
-// reported "374 messages" and exit 0) ends with the failure named in the
-// summary and exit status 3; the run itself is unharmed.
+// reported "374 messages" and exit 0, then "18 messages" recorded when no
+// byte reached the device) ends with the failure named in the summary and
+// exit status 3, nothing counted as recorded; the run itself is unharmed.
 void test_log_write_failure_is_reported(void**) {
   const Run r = run_fsw_app(
       {"--hal", "real", "--camera-replay", source("tests/data"), "--tasks", "camera,estimator",
@@ -118,6 +119,7 @@ void test_log_write_failure_is_reported(void**) {
               r.number("log_messages"), r.number("log_lost"));
   assert_true(failure.find("No space left on device") != std::string::npos);
   assert_true(r.number("log_lost") > 0);
+  assert_true(r.number("log_messages") == 0.0);
   assert_true(r.output.find("LCM log /dev/full") != std::string::npos);
   assert_true(r.number("frames_processed") >= 4);
 }

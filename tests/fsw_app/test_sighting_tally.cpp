@@ -8,6 +8,7 @@
 
 #include "cmocka_cpp.hpp"
 #include "estimator/config.hpp"
+#include "fsw_app/input_gates.hpp"
 #include "fsw_app/sighting_tally.hpp"
 #include "hrp/handrail_estimate_t.hpp"
 
@@ -32,7 +33,7 @@ std::vector<std::uint8_t> encoded(std::int8_t state, double length_m) {
 }
 
 void deliver(fsw_app::SightingTally& t, const std::vector<std::uint8_t>& bytes) {
-  t.deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  t.deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()), fsw_app::kNoReceiverClock);
 }
 
 void test_states_lengths_and_types_are_counted(void**) {

@@ -81,9 +81,9 @@ void test_estimator_task_processes_frames_without_allocating(void**) {
 }
 
 void test_arm_task_cycles_without_allocating(void**) {
-  fsw_app::LcmHub hub(g_url);
-  assert_true(hub.good());
   hal::ManualClock clock(1000000);
+  fsw_app::LcmHub hub(g_url, clock);
+  assert_true(hub.good());
   FakeJoints joints(clock);
   FakeGripper gripper(clock);
   fsw_app::ArmTask task(hub, joints, gripper, arm::PerchConfig{}, clock, 20.0);
@@ -139,11 +139,11 @@ void test_frames_cross_lcm_without_allocating(void**) {
     msg.encode(encoded[k].data(), 0, static_cast<int>(encoded[k].size()));
   }
   publisher.on_new_data(frames[0].view(0, clock.now_us()));  // warm up
-  source.deliver(encoded[0].data(), static_cast<std::uint32_t>(encoded[0].size()));
+  source.deliver(encoded[0].data(), static_cast<std::uint32_t>(encoded[0].size()), fsw_app::kNoReceiverClock);
   alloc_counter::arm();
   for (int n = 1; n <= 30; ++n) {
     publisher.on_new_data(frames[n % 2].view(static_cast<std::uint64_t>(n), clock.now_us()));
-    source.deliver(encoded[n % 2].data(), static_cast<std::uint32_t>(encoded[n % 2].size()));
+    source.deliver(encoded[n % 2].data(), static_cast<std::uint32_t>(encoded[n % 2].size()), fsw_app::kNoReceiverClock);
   }
   const long allocations = alloc_counter::disarm();
   assert_int_equal(publisher.published(), 31);
@@ -157,9 +157,9 @@ void test_frames_cross_lcm_without_allocating(void**) {
 // 5 Hz, the task cycling at 100 Hz; delivery (the dispatcher's work) is not
 // counted, the cycles are.
 void test_localization_task_cycles_without_allocating(void**) {
-  fsw_app::LcmHub hub(g_url);
-  assert_true(hub.good());
   hal::ManualClock clock(1000000);
+  fsw_app::LcmHub hub(g_url, clock);
+  assert_true(hub.good());
   fsw_app::LocalizationTaskConfig cfg;
   fsw_app::LocalizationTask task(hub, cfg, clock);
   fsw_app::Publisher<hrp::imu_sample_t> imu(hub, fsw_app::channel::kImuSample);

@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
   }
 
   hal::ManualClock clock(1000000);  // simulated time starts at 1 s
-  fsw_app::LcmHub hub("memq://");
+  fsw_app::LcmHub hub("memq://", clock);
   PathSource path(w, cfg.T_body_cam);
   fsw_app::HilSensors sensors(hub, fsw_app::hil_sensor_params(opt.gp_bias_m, opt.gp_bias_deg),
                               opt.seed);

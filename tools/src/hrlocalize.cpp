@@ -206,7 +206,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   hal::ManualClock clock(0);
-  fsw_app::LcmHub hub("memq://");
+  // The log's messages are dated on the recorded run's clock: replayed,
+  // their time and rate are not judged (their counters and content are).
+  fsw_app::LcmHub hub("memq://", fsw_app::LcmHub::kReplay);
   fsw_app::LocalizationTask task(hub, fsw_app::localization_task_config(app), clock);
   const auto drain = [&hub] {
     while (hub.handle(0) > 0) {

@@ -45,6 +45,9 @@ struct PerchConfig {
   int grasp_settle_ms = 200;       // the hold must last this long
   std::uint8_t max_grasp_attempts = 3;
   int handrail_lost_ms = 1500;            // approach: no estimate this long is a loss
+  // Approach: the perch manager without a usable robot pose this long (it
+  // holds the robot still meanwhile) aborts the perch, the arm folded.
+  int pose_lost_ms = 2000;
   std::uint8_t io_failures_to_fault = 2;  // consecutive failed reads before a fault
 };
 

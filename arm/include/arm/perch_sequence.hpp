@@ -10,7 +10,8 @@
 // lost, a state past its timeout) goes to FAULT through one safe action:
 // joints held where they are (torque off if a servo is in alarm), the
 // gripper stopped unless it holds a handrail, in which case it keeps
-// holding. Only STOWED, PERCHED and FAULT wait without a timeout.
+// holding. A robot pose lost during the approach (POSE_LOST) folds the arm
+// instead: the robot cannot tell where the wall is. Only STOWED, PERCHED and FAULT wait without a timeout.
 //
 // step() does all the I/O and is called at a fixed rate by the arm task,
 // with the time injected. Nothing allocates; every loop is bounded.
@@ -52,7 +53,10 @@ class PerchSequence {
   IoResult entry_action(PerchState state, const char** what);
   void run_entry_action();
   void fault(FaultCode code, const IoResult& io, const char* detail);
-  void enter_safe_state(bool servo_alarm);
+  void enter_safe_state(bool servo_alarm, bool fold);
+  // Faults the approach when the perch manager has had no usable robot
+  // pose for pose_lost_ms; true when it did.
+  bool pose_lost();
   bool holding_handrail() const;
   bool joints_at(const JointAngles& goal) const;
   void judge_grasp();
@@ -75,6 +79,7 @@ class PerchSequence {
   // Where CALIBRATING goes when it finishes.
   PerchState after_calibration_ = PerchState::kStowed;
   std::int64_t hold_since_us_ = -1;  // grasp check: when the hold was first seen
+  std::int64_t approach_started_us_ = 0;  // entry into DEPLOYING
 };
 
 }  // namespace arm

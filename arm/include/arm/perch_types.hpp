@@ -44,6 +44,7 @@ enum class FaultCode : std::uint8_t {
   kCommandFailed,         // a device refused a command it should take
   kAborted,               // the operator aborted a stow or an unperch
   kStartupUnknown,        // at start the arm was neither stowed nor holding, and could not stow
+  kPoseLost,              // no usable robot pose for too long during the approach (arm stowed)
 };
 const char* to_string(FaultCode code);
 
@@ -84,6 +85,8 @@ struct ApproachInput {
   std::int64_t handrail_seen_us = -1;  // capture time of the last estimate with a pose; -1 never
   bool at_target = false;              // the robot is at the grasp pose, within tolerance
   bool backed_off = false;             // after letting go, the robot is clear of the handrail
+  bool pose_usable = true;             // the manager flies on a fresh, trusted robot pose
+  std::int64_t pose_unusable_since_us = -1;  // since when it has none; -1 while it has one
 };
 
 struct ArmStatus {

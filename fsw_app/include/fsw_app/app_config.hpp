@@ -44,6 +44,10 @@ struct ApproachConfig {
   double angle_tolerance_rad = 0.05;
   double back_off_m = 0.25;  // after letting go
   int settle_cycles = 5;     // within tolerance this many cycles: at target
+  // The robot flies only on a ROBOT_POSE from the filter, not marked lost,
+  // and no older than this; otherwise it holds still (zero velocity). The
+  // filter publishes with every IMU sample (62.5 Hz): 250 ms is 15 missed.
+  int pose_max_age_ms = 250;
 };
 
 struct AppConfig {

@@ -17,6 +17,7 @@
 #include "hrp/imu_sample_t.hpp"
 #include "hrp/perch_command_t.hpp"
 #include "hrp/robot_pose_t.hpp"
+#include "fsw_app/wire_check.hpp"
 
 namespace fsw_app {
 
@@ -26,8 +27,13 @@ enum class InputReject : std::uint8_t {
   kNotFinite,      // a NaN or infinity in a number field
   kOutOfRange,     // a field outside what the robot can be or do
   kStale,          // older than the message already held on the channel
+  kBadLength,      // a string or array length field the decoder must not see (wire_check.hpp)
+  kDecoderFault,   // the decoder threw: contained here, and counted (never expected)
+  kFuture,         // dated ahead of the receiver's clock (input_gates.hpp)
+  kSequence,       // a sample counter that does not advance, or jumps too far
+  kRateLimited,    // more messages than the channel's rate bound allows
 };
-constexpr int kInputRejectKinds = 5;
+constexpr int kInputRejectKinds = 10;
 const char* to_string(InputReject reason);
 
 // Accepted and rejected messages on one channel. Written by the dispatcher
@@ -74,9 +80,22 @@ bool check_message(const hrp::gp_pose_t& m, InputReject* why);
 
 // Decodes `size` bytes into *scratch and checks them. *scratch is the
 // receiver's aside copy: what it holds after a rejection is not to be used.
+// The length fields are walked first (wire_check.hpp), so the generated
+// decoder never meets a length it would throw on or allocate for; should
+// it throw anyway, the exception ends here, counted as kDecoderFault.
 template <typename Msg>
 bool decode_and_check(const void* data, std::uint32_t size, Msg* scratch, InputReject* why) {
-  const int used = scratch->decode(data, 0, static_cast<int>(size));
+  if (wire_check(static_cast<const Msg*>(nullptr), data, size) != WireFault::kNone) {
+    *why = InputReject::kBadLength;
+    return false;
+  }
+  int used = -1;
+  try {
+    used = scratch->decode(data, 0, static_cast<int>(size));
+  } catch (...) {
+    *why = InputReject::kDecoderFault;
+    return false;
+  }
   if (used < 0) {
     *why = InputReject::kUndecodable;
     return false;

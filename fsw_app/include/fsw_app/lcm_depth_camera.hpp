@@ -39,7 +39,7 @@ class LcmDepthCamera final : public hal::DepthCamera {
   bool is_capturing() const override { return capturing_.load(); }
 
   // Dispatcher side: one DEPTH_FRAME message.
-  void deliver(const void* data, std::uint32_t size);
+  void deliver(const void* data, std::uint32_t size, std::int64_t now_us);
 
   std::uint64_t frames_delivered() const { return delivered_.load(); }
   std::uint64_t messages_rejected() const { return rejected_.load(); }

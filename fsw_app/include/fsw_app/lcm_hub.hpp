@@ -18,14 +18,17 @@
 #include <vector>
 
 #include "fsw_app/input_checks.hpp"
+#include "fsw_app/input_gates.hpp"
+#include "hal/clock.hpp"
 
 namespace fsw_app {
 
 // The newest message on a channel, with a count so a reader can tell a new
 // one from the one it already has. Each message is decoded into a copy
-// aside and checked (input_checks.hpp): only a whole, finite, in-range
-// message no older than the held one replaces it; a rejected one leaves
-// the held message as it was and is counted by reason.
+// aside and checked (input_checks.hpp, input_gates.hpp): only a whole,
+// finite, in-range message, not dated ahead of the receiver's clock, no
+// older than the held one and within the channel's rate replaces it; a
+// rejected one leaves the held message as it was and is counted by reason.
 template <typename Msg>
 class Mailbox {
  public:
@@ -41,16 +44,30 @@ class Mailbox {
   }
   const InputCounts& input_counts() const { return counts_; }
 
-  // Dispatcher side (one thread: incoming_ needs no lock of its own).
-  void deliver(const void* data, std::uint32_t size) {
+  // Dispatcher side (one thread: incoming_ and the gates need no lock of
+  // their own). now_us: the receiver's clock, or kNoReceiverClock.
+  void deliver(const void* data, std::uint32_t size, std::int64_t now_us) {
     InputReject why = InputReject::kUndecodable;
     if (!decode_and_check(data, size, &incoming_, &why)) {
       counts_.count_rejected(why);
       return;
     }
+    if (dated_ahead(newest_time_us(incoming_), now_us)) {
+      counts_.count_rejected(InputReject::kFuture);
+      return;
+    }
     std::lock_guard<std::mutex> lock(mutex_);
     if (sequence_ != 0 && !is_fresh(incoming_.utime, msg_.utime)) {
       counts_.count_rejected(InputReject::kStale);
+      return;
+    }
+    std::int64_t seq = 0;
+    if (sequence_of(incoming_, &seq) && !sequence_gate_.admit(seq)) {
+      counts_.count_rejected(InputReject::kSequence);
+      return;
+    }
+    if (!rate_gate_.admit(now_us)) {
+      counts_.count_rejected(InputReject::kRateLimited);
       return;
     }
     // A swap, not a copy: string fields keep their buffers, no allocation.
@@ -64,6 +81,8 @@ class Mailbox {
   Msg msg_{};
   Msg incoming_{};
   std::uint64_t sequence_ = 0;
+  SequenceGate sequence_gate_;
+  RateGate rate_gate_{rate_bound(static_cast<const Msg*>(nullptr))};
   InputCounts counts_;
 };
 
@@ -73,7 +92,8 @@ class Mailbox {
 // oldest is overwritten and counted (a newer command, an abort above all,
 // matters more than an older one). No allocation: messages without
 // variable-length fields only. Messages are checked as a Mailbox's are,
-// except for age: commands are judged in order by the arm's own rules.
+// except for age against the held one: commands are judged in order by the
+// arm's own rules, samples by their counter (input_gates.hpp).
 template <typename Msg, std::size_t Capacity>
 class MessageQueue {
   static_assert(Capacity > 0, "a queue holds at least one message");
@@ -93,10 +113,23 @@ class MessageQueue {
 
   // Dispatcher side. Decoded aside first, so a malformed message leaves
   // the queue as it was.
-  void deliver(const void* data, std::uint32_t size) {
+  void deliver(const void* data, std::uint32_t size, std::int64_t now_us) {
     InputReject why = InputReject::kUndecodable;
     if (!decode_and_check(data, size, &incoming_, &why)) {
       counts_.count_rejected(why);
+      return;
+    }
+    if (dated_ahead(newest_time_us(incoming_), now_us)) {
+      counts_.count_rejected(InputReject::kFuture);
+      return;
+    }
+    std::int64_t seq = 0;
+    if (sequence_of(incoming_, &seq) && !sequence_gate_.admit(seq)) {
+      counts_.count_rejected(InputReject::kSequence);
+      return;
+    }
+    if (!rate_gate_.admit(now_us)) {
+      counts_.count_rejected(InputReject::kRateLimited);
       return;
     }
     std::lock_guard<std::mutex> lock(mutex_);
@@ -114,6 +147,8 @@ class MessageQueue {
   std::mutex mutex_;
   Msg slots_[Capacity]{};
   Msg incoming_{};
+  SequenceGate sequence_gate_;
+  RateGate rate_gate_{rate_bound(static_cast<const Msg*>(nullptr))};
   std::size_t head_ = 0, count_ = 0;
   std::atomic<std::uint64_t> overflows_{0};
   InputCounts counts_;
@@ -127,27 +162,52 @@ struct ChannelInput {
 };
 constexpr std::size_t kMaxCheckedChannels = 16;
 
+// Every receiver is called inside the hub's containment: whatever it
+// throws (a generated decoder, an allocation) ends there and is counted in
+// receiver_faults(), and the dispatcher goes on.
 class LcmHub {
  public:
-  explicit LcmHub(const std::string& url);
+  // Receivers judge messages' times against `clock` (the robot's clock, or
+  // a simulation's); the default is the host's monotonic clock.
+  explicit LcmHub(const std::string& url) : LcmHub(url, &host_clock()) {}
+  LcmHub(const std::string& url, const hal::Clock& clock) : LcmHub(url, &clock) {}
+  // A hub replaying a recorded run: its messages are dated in the past's
+  // clock, so receivers judge neither time nor rate (counters and content
+  // still).
+  static constexpr struct ReplayTag {
+  } kReplay{};
+  LcmHub(const std::string& url, ReplayTag) : LcmHub(url, nullptr) {}
   ~LcmHub();
   bool good() const { return lcm_.good(); }
   const std::string& url() const { return url_; }
 
   // Each message on `channel` goes, still encoded, to receiver->deliver(data,
-  // size) on the dispatcher thread: a Mailbox, a MessageQueue, or anything
-  // with that member (the LCM frame source). A receiver with
+  // size, now_us) on the dispatcher thread: a Mailbox, a MessageQueue, or
+  // anything with that member (the LCM frame source). A receiver with
   // input_counts() has them listed in inputs(). Subscribe before start().
   template <typename Receiver>
   void subscribe(const char* channel, Receiver* receiver) {
     if constexpr (has_input_counts<Receiver>(0)) register_input(channel, &receiver->input_counts());
+    deliveries_.push_back(std::make_unique<Delivery>(Delivery{this, receiver}));
     lcm_.subscribeFunction(
         channel,
-        +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Receiver* r) {
-          r->deliver(rbuf->data, rbuf->data_size);
+        +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Delivery* del) {
+          try {
+            static_cast<Receiver*>(del->receiver)
+                ->deliver(rbuf->data, rbuf->data_size, del->hub->receiver_now_us());
+          } catch (...) {
+            del->hub->receiver_faults_.fetch_add(1, std::memory_order_relaxed);
+          }
         },
-        receiver);
+        deliveries_.back().get());
   }
+
+  // The receivers' clock now, or kNoReceiverClock for a replay hub.
+  std::int64_t receiver_now_us() const {
+    return clock_ != nullptr ? clock_->now_us() : kNoReceiverClock;
+  }
+  // Exceptions that reached the hub from a receiver or the raw sink.
+  std::uint64_t receiver_faults() const { return receiver_faults_.load(); }
 
   // The checked channels of this process, in subscription order.
   const ChannelInput* inputs(std::size_t* count) const {
@@ -170,8 +230,21 @@ class LcmHub {
   lcm::LCM& lcm() { return lcm_; }
 
  private:
+  LcmHub(const std::string& url, const hal::Clock* clock);
+  static const hal::Clock& host_clock();
+
+  // What a subscription's callback needs: its receiver and the hub. Made
+  // at subscription (initialisation), kept for the hub's life.
+  struct Delivery {
+    LcmHub* hub;
+    void* receiver;
+  };
+
   std::string url_;
+  const hal::Clock* clock_;
   lcm::LCM lcm_;
+  std::vector<std::unique_ptr<Delivery>> deliveries_;
+  std::atomic<std::uint64_t> receiver_faults_{0};
   std::mutex publish_mutex_;
   std::atomic<bool> running_{false};
   std::thread thread_;

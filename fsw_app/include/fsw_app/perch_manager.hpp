@@ -11,6 +11,11 @@
 //   CLOSING, GRASP_CHECK: keep station on the grasp pose;
 //   PERCHED, FAULT and the rest: hold;
 //   BACKING_OFF: straight out along the wall normal, "backed off" once clear.
+// Whatever the arm's state, the robot holds still (zero velocity) unless
+// its ROBOT_POSE is the filter's, not marked lost and at most
+// pose_max_age_ms old; APPROACH_STATUS says since when it has had none,
+// and the arm aborts the perch (POSE_LOST, arm folded) when that lasts
+// longer than its pose_lost_ms.
 // ApproachController is the logic (pure, time injected); PerchManager wires
 // it to LCM on a thread.
 #include <Eigen/Geometry>
@@ -51,6 +56,8 @@ class ApproachController {
   const Eigen::Isometry3d& handrail() const { return T_world_handrail_; }
 
  private:
+  // Whether the robot may fly on this pose now.
+  bool pose_usable(std::int64_t now_us, const hrp::robot_pose_t* pose) const;
   // Velocity toward `goal`, limited.
   // With approach_axis, motion along it waits for the lateral error.
   void servo_to(const Eigen::Isometry3d& T_world_body, const Eigen::Isometry3d& goal,
@@ -62,6 +69,7 @@ class ApproachController {
   Eigen::Isometry3d T_world_target_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_world_handrail_ = Eigen::Isometry3d::Identity();
   std::int64_t handrail_seen_us_ = -1;
+  std::int64_t pose_unusable_since_us_ = -1;
   int settled_ = 0;
   std::int64_t last_step_us_ = 0;
   Eigen::Vector3d integral_ = Eigen::Vector3d::Zero();

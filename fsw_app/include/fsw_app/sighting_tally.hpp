@@ -37,7 +37,7 @@ class SightingTally {
   explicit SightingTally(const estimator::DetectorConfig& cfg) : cfg_(cfg) {}
 
   // Dispatcher side: one encoded HANDRAIL_ESTIMATE.
-  void deliver(const void* data, std::uint32_t size);
+  void deliver(const void* data, std::uint32_t size, std::int64_t now_us);
   // One decoded estimate (what deliver() does after checking it).
   void add(const hrp::handrail_estimate_t& m);
   SightingCounts counts() const;
