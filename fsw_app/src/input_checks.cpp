@@ -177,4 +177,24 @@ bool check_message(const hrp::estimator_health_t& m, InputReject* why) {
   return v.ok();
 }
 
+bool check_message(const hrp::input_health_t& m, InputReject* why) {
+  Verdict v(why);
+  v.count_within(m.num_reasons, 0, hrp::input_health_t::MAX_REASONS);
+  for (std::int64_t n : m.accepted) v.count_within(n, 0, INT64_MAX);
+  for (const auto& row : m.rejected) {
+    for (std::int64_t n : row) v.count_within(n, 0, INT64_MAX);
+  }
+  return v.ok();
+}
+
+bool check_message(const hrp::localization_health_t& m, InputReject* why) {
+  Verdict v(why);
+  v.count_within(m.imu_seq_gaps, 0, INT64_MAX);
+  v.count_within(m.features_gated, 0, INT64_MAX);
+  v.count_within(m.handrail_unusable, 0, INT64_MAX);
+  v.within(m.position_sigma_m, 0.0, 1e6);
+  v.within(m.attitude_sigma_rad, 0.0, 1e6);
+  return v.ok();
+}
+
 }  // namespace fsw_app

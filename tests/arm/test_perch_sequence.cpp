@@ -208,6 +208,54 @@ void test_handrail_lost_for_a_second_is_survived_longer_is_a_fault(void**) {
   assert_int_equal(rig.gripper.stops, 1);  // not holding anything: motor stopped
 }
 
+// The perch manager has had no usable robot pose (stale, lost, not the
+// filter's) for pose_lost_ms: the approach ends POSE_LOST with the arm
+// folded to its stow posture and the gripper to its stow position (the
+// robot cannot tell where the wall is). A shorter outage is ridden out.
+void test_pose_lost_during_the_approach_folds_the_arm(void**) {
+  Rig rig;
+  rig.gripper.handrail_counts = 1800;
+  assert_true(rig.run_until(PerchState::kStowed, 1.0));
+  rig.command(CommandKind::kPerch);
+  assert_true(rig.run_until(PerchState::kGripperOpen, 20.0));
+  const arm::PerchConfig& cfg = rig.seq.config();
+  rig.approach.pose_usable = false;
+  rig.approach.pose_unusable_since_us = rig.clock.now_us();
+  for (int k = 0; k < 30; ++k) rig.step();  // 1.5 s
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kGripperOpen));
+  rig.approach.pose_usable = true;
+  rig.approach.pose_unusable_since_us = -1;
+  rig.step();
+  rig.approach.pose_usable = false;
+  rig.approach.pose_unusable_since_us = rig.clock.now_us();
+  assert_true(rig.run_until(PerchState::kFault, 0.001 * cfg.pose_lost_ms + 0.2));
+  assert_int_equal(static_cast<int>(rig.seq.status().fault),
+                   static_cast<int>(FaultCode::kPoseLost));
+  assert_string_equal(arm::to_string(rig.seq.status().fault), "POSE_LOST");
+  for (int k = 0; k < 100; ++k) rig.step();  // 5 s to fold
+  assert_near(rig.joints.q.tilt_rad, cfg.geometry.stow.tilt_rad, 0.02);
+  assert_near(rig.joints.q.pan_rad, cfg.geometry.stow.pan_rad, 0.02);
+  assert_near(rig.gripper.position, cfg.stow_gripper_counts, 2.0);
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kFault));
+}
+
+// A pose missing since before PERCH (the filter still starting) gets the
+// whole allowance from the perch's start, then the same fault.
+void test_pose_missing_before_the_perch_gets_the_allowance(void**) {
+  Rig rig;
+  rig.approach.pose_usable = false;
+  rig.approach.pose_unusable_since_us = rig.clock.now_us();
+  assert_true(rig.run_until(PerchState::kStowed, 1.0));
+  for (int k = 0; k < 60; ++k) rig.step();  // 3 s without a pose, stowed: nothing to abort
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kStowed));
+  rig.command(CommandKind::kPerch);
+  for (int k = 0; k < 30; ++k) rig.step();  // 1.5 s into the perch
+  assert_true(rig.seq.state() != PerchState::kFault);
+  assert_true(rig.run_until(PerchState::kFault, 1.0));
+  assert_int_equal(static_cast<int>(rig.seq.status().fault),
+                   static_cast<int>(FaultCode::kPoseLost));
+}
+
 void test_servo_silent_mid_approach_is_a_fault_naming_it(void**) {
   Rig rig;
   rig.gripper.handrail_counts = 1800;
@@ -445,6 +493,8 @@ int main() {
       cmocka_unit_test(test_empty_close_is_retried_then_fails),
       cmocka_unit_test(test_wrong_place_is_a_failed_grasp),
       cmocka_unit_test(test_handrail_lost_for_a_second_is_survived_longer_is_a_fault),
+      cmocka_unit_test(test_pose_lost_during_the_approach_folds_the_arm),
+      cmocka_unit_test(test_pose_missing_before_the_perch_gets_the_allowance),
       cmocka_unit_test(test_servo_silent_mid_approach_is_a_fault_naming_it),
       cmocka_unit_test(test_servo_overload_goes_limp_with_the_reason),
       cmocka_unit_test(test_gripper_faults),

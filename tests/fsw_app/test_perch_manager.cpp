@@ -23,6 +23,10 @@ struct Loop {
   sim_hal::SimFlyer flyer;
   std::int64_t now_us = 0;
   fsw_app::ApproachOutput out;
+  // The pose the manager is handed: this old, marked lost, from this source.
+  std::int64_t pose_age_us = 0;
+  bool pose_lost = false;
+  std::int8_t pose_source = hrp::robot_pose_t::SOURCE_FILTER;
 
   explicit Loop(std::uint64_t seed) : flyer(start_pose(), sim_hal::FlyerParams{}, seed) {
     // The wall normal is world +x; the bar runs along world z.
@@ -55,8 +59,9 @@ struct Loop {
       now_us += 10000;
       if (k % 5 == 0) {
         hrp::robot_pose_t pose{};
-        pose.utime = now_us;
-        pose.source = hrp::robot_pose_t::SOURCE_FILTER;
+        pose.utime = now_us - pose_age_us;
+        pose.source = pose_source;
+        pose.lost = pose_lost;
         fsw_app::to_msg(flyer.pose(), &pose.T_world_body);
         for (int i = 0; i < 3; ++i) pose.velocity_mps[i] = flyer.velocity()[i];
         out = ctl.step(now_us, &pose, arm_state);
@@ -118,12 +123,53 @@ void test_backs_off_after_letting_go(void**) {
   assert_true(out_m > 0.9 * loop.cfg.back_off_m);
 }
 
+// Without a pose it can fly on (older than pose_max_age_ms, marked lost,
+// or from anything but the filter), the manager holds the robot still and
+// says since when; with one again it flies on.
+void test_holds_without_a_fresh_filter_pose(void**) {
+  Loop loop(4);
+  loop.run(3.0, A::DEPLOYING);
+  assert_false(loop.out.velocity.hold);
+  assert_true(loop.out.status.pose_usable);
+  assert_int_equal(loop.out.status.pose_unusable_since_utime, -1);
+  const auto holds = [&loop](const char* why) {
+    loop.run(0.5, A::DEPLOYING);
+    std::printf("  %s: hold %d, usable %d\n", why, loop.out.velocity.hold,
+                loop.out.status.pose_usable);
+    assert_true(loop.out.velocity.hold);
+    assert_false(loop.out.status.pose_usable);
+    assert_true(loop.out.status.pose_unusable_since_utime > 0);
+  };
+  loop.pose_age_us = 1000LL * loop.cfg.pose_max_age_ms + 50000;
+  holds("pose 300 ms old");
+  const std::int64_t since = loop.out.status.pose_unusable_since_utime;
+  loop.pose_age_us = 0;
+  loop.pose_lost = true;
+  holds("pose marked lost");
+  assert_int_equal(loop.out.status.pose_unusable_since_utime, since);  // one outage
+  loop.pose_lost = false;
+  loop.pose_source = hrp::robot_pose_t::SOURCE_GP;
+  holds("pose from the GP");
+  loop.pose_source = hrp::robot_pose_t::SOURCE_TRUTH;
+  holds("pose from the truth");
+  loop.pose_source = hrp::robot_pose_t::SOURCE_FILTER;
+  loop.run(0.5, A::DEPLOYING);
+  assert_false(loop.out.velocity.hold);
+  assert_true(loop.out.status.pose_usable);
+  assert_int_equal(loop.out.status.pose_unusable_since_utime, -1);
+  // No pose at all.
+  const fsw_app::ApproachOutput none = loop.ctl.step(loop.now_us + 10000, nullptr, A::GRIPPER_OPEN);
+  assert_true(none.velocity.hold);
+  assert_false(none.status.pose_usable);
+}
+
 }  // namespace
 
 int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_reaches_and_settles_on_the_grasp_pose),
       cmocka_unit_test(test_backs_off_after_letting_go),
+      cmocka_unit_test(test_holds_without_a_fresh_filter_pose),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -15,6 +15,8 @@
 #include "hrp/gp_pose_t.hpp"
 #include "hrp/handrail_estimate_t.hpp"
 #include "hrp/imu_sample_t.hpp"
+#include "hrp/input_health_t.hpp"
+#include "hrp/localization_health_t.hpp"
 #include "hrp/perch_command_t.hpp"
 #include "hrp/robot_pose_t.hpp"
 #include "fsw_app/wire_check.hpp"
@@ -77,6 +79,9 @@ bool check_message(const hrp::estimator_health_t& m, InputReject* why);
 // (it rejects and counts by its own status).
 bool check_message(const hrp::imu_sample_t& m, InputReject* why);
 bool check_message(const hrp::gp_pose_t& m, InputReject* why);
+// The health reports, for their readers (tools, a ground station).
+bool check_message(const hrp::input_health_t& m, InputReject* why);
+bool check_message(const hrp::localization_health_t& m, InputReject* why);
 
 // Decodes `size` bytes into *scratch and checks them. *scratch is the
 // receiver's aside copy: what it holds after a rejection is not to be used.

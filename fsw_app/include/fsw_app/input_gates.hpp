@@ -27,6 +27,8 @@
 #include "hrp/gp_pose_t.hpp"
 #include "hrp/handrail_estimate_t.hpp"
 #include "hrp/imu_sample_t.hpp"
+#include "hrp/input_health_t.hpp"
+#include "hrp/localization_health_t.hpp"
 #include "hrp/perch_command_t.hpp"
 #include "hrp/robot_pose_t.hpp"
 
@@ -55,6 +57,9 @@ constexpr RateBound rate_bound(const hrp::approach_status_t*) { return {400.0, 3
 constexpr RateBound rate_bound(const hrp::body_velocity_command_t*) { return {400.0, 32.0}; }
 constexpr RateBound rate_bound(const hrp::estimator_health_t*) { return {20.0, 8.0}; }
 constexpr RateBound rate_bound(const hrp::perch_command_t*) { return {50.0, 16.0}; }
+// One process each, about once a second.
+constexpr RateBound rate_bound(const hrp::input_health_t*) { return {20.0, 8.0}; }
+constexpr RateBound rate_bound(const hrp::localization_health_t*) { return {20.0, 8.0}; }
 
 // The time a message is dated: its utime, and where it has one its capture
 // time (never after the other on an honest sender).
