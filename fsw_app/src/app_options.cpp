@@ -140,7 +140,8 @@ void print_usage(std::FILE* out) {
                "                        approach starts: servo-silent, gripper-overcurrent,\n"
                "                        occlude (1 s), corrupt-frames (5 frames), imu-silent\n"
                "                        (0.5 s), gp-jump (the GP pose 20 cm off from then on),\n"
-               "                        handrail-lost (the camera sees nothing from then on);\n"
+               "                        handrail-lost (the camera sees nothing from then on),\n"
+               "                        imu-lost (no IMU sample from then on, so no robot pose);\n"
                "                        with --camera usb or royale also usb-unplug (the\n"
                "                        cable out for 0.5 s) and usb-stall (the stream\n"
                "                        endpoint halted)\n"
@@ -262,7 +263,8 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
       }
       if (name != "servo-silent" && name != "gripper-overcurrent" && name != "occlude" &&
           name != "corrupt-frames" && name != "imu-silent" && name != "gp-jump" &&
-          name != "handrail-lost" && name != "usb-unplug" && name != "usb-stall") {
+          name != "handrail-lost" && name != "imu-lost" && name != "usb-unplug" &&
+          name != "usb-stall") {
         return usage_error("unknown fault \"" + name + "\"");
       }
       o->faults.push_back({name, t});

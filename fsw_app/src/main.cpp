@@ -432,6 +432,8 @@ int main(int argc, char** argv) {
         }
       } else if (f == "imu-silent") {
         world->sensors().silence_imu_until(clock.now_us() + 500000);
+      } else if (f == "imu-lost") {
+        world->sensors().silence_imu_until(std::numeric_limits<std::int64_t>::max());
       } else if (f == "gp-jump") {
         world->sensors().jump_gp(Eigen::Vector3d(0.0, 0.2, 0.0));
       } else if (f == "usb-unplug") {

@@ -447,6 +447,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       f,
       "{\"seed\": %llu, \"scenario\": \"%s\", \"tasks\": \"%s\", \"perched\": %s, "
       "\"success\": %s, \"arm_state\": \"%s\", \"fault\": \"%s\", \"fault_text\": \"%s\", "
+      "\"arm_tilt_rad\": %.3f, \"arm_pan_rad\": %.3f, \"receiver_faults\": %llu, "
       "\"time_to_perch_s\": %.2f, \"grasp_error_m\": %.4f, \"frames_received\": %lld, "
       "\"frames_processed\": %lld, \"frames_dropped\": %lld, \"frames_corrupt\": %lld, "
       "\"deadline_misses\": %lld, \"processing_median_us\": %d, \"arm_cycles\": %lld, "
@@ -456,6 +457,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       static_cast<unsigned long long>(opt.seed), opt.scenario.c_str(),
       task_names(opt.tasks).c_str(), s.perched ? "true" : "false", s.success ? "true" : "false",
       s.arm.state_name.c_str(), s.arm.fault_name.c_str(), s.arm.fault_text.c_str(),
+      s.arm.tilt_rad, s.arm.pan_rad, static_cast<unsigned long long>(s.receiver_faults),
       s.time_to_perch_s, s.grasp_error_m, static_cast<long long>(h.frames_received),
       static_cast<long long>(h.frames_processed), static_cast<long long>(h.frames_dropped),
       static_cast<long long>(h.frames_corrupt), static_cast<long long>(h.deadline_misses),
