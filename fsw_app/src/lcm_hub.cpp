@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "hal/realtime.hpp"
+
 namespace fsw_app {
 
 const hal::Clock& LcmHub::host_clock() {
@@ -25,7 +27,7 @@ bool LcmHub::publish_raw(const std::string& channel, const std::uint8_t* data, s
 void LcmHub::subscribe_all(RawSink sink, void* user) {
   sink_ = sink;
   sink_user_ = user;
-  lcm_.subscribeFunction(
+  lcm::Subscription* sub = lcm_.subscribeFunction(
       ".*",
       +[](const lcm::ReceiveBuffer* rbuf, const std::string& channel, LcmHub* hub) {
         try {
@@ -35,6 +37,7 @@ void LcmHub::subscribe_all(RawSink sink, void* user) {
         }
       },
       this);
+  if (sub != nullptr) sub->setQueueCapacity(kSubscriptionQueue);
 }
 
 void LcmHub::register_input(const char* channel, const InputCounts* counts) {
@@ -49,6 +52,10 @@ void LcmHub::register_input(const char* channel, const InputCounts* counts) {
 void LcmHub::start() {
   if (running_.exchange(true)) return;
   thread_ = std::thread([this] {
+    // Behind the flight tasks: a flood on the bus then costs the bus's own
+    // latency (queued in LCM, kSubscriptionQueue deep), not the arm loop's
+    // deadline. Nothing to do when the kernel refuses.
+    (void)hal::lower_thread_priority(kDispatcherNice);
     while (running_.load()) lcm_.handleTimeout(50);
   });
 }

@@ -69,6 +69,9 @@ constexpr std::int32_t kStopSequence = 2;
 // How long a safe stop may take: an ABORT during the approach opens, backs
 // off and stows (about 10 s in the simulator).
 constexpr double kSafeStopLimit_s = 30.0;
+// How long the arm may take to come to rest after a fault (folding from the
+// grip posture takes about 2 s at the configured joint speed).
+constexpr double kFaultSettleLimit_s = 8.0;
 
 // Frames of 0.73 MB arrive over udpm as a dozen datagrams at once: with the
 // kernel's default receive buffer (about 200 kB) most frames lose one. An
@@ -328,6 +331,7 @@ int main(int argc, char** argv) {
   hrp::approach_status_t approach{};
   bool commanded = false, approach_started = false, done = false, perched = false;
   double perch_cmd_s = 0.0, perched_s = 0.0, last_print = -10.0, replay_done_s = -1.0;
+  double fault_s = -1.0;
   std::uint64_t rejections_reported = 0;
 #ifdef HRP_WITH_SIM
   double approach_s = 0.0;
@@ -453,7 +457,16 @@ int main(int argc, char** argv) {
         perched = true;
         done = true;
       }
-      if (arm.state == hrp::arm_state_t::FAULT) done = true;
+      // A fault ends the run once the arm has come to rest (POSE_LOST folds
+      // it), so that the summary reports where it ended up.
+      if (arm.state == hrp::arm_state_t::FAULT) {
+        if (fault_s < 0.0) fault_s = t;
+        // A few arm cycles first: the state that entered FAULT was read
+        // before any safe-state motion began.
+        if ((t - fault_s > 0.3 && !arm.joints_moving) || t - fault_s > kFaultSettleLimit_s) {
+          done = true;
+        }
+      }
       if (t - perch_cmd_s > opt.timeout_s) done = true;
     }
     // A replay ends half a second after its last frame, time for the

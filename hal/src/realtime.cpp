@@ -2,6 +2,9 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <cerrno>
 
@@ -34,6 +37,15 @@ RealtimeStatus request_realtime_priority(int priority) {
   const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
   if (rc == 0) return RealtimeStatus::kGranted;
   return rc == EPERM ? RealtimeStatus::kNotPermitted : RealtimeStatus::kFailed;
+}
+
+bool lower_thread_priority(int nice) {
+  if (nice <= 0 || nice > 19) return false;
+  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+  errno = 0;
+  const int now = getpriority(PRIO_PROCESS, tid);
+  if (now == -1 && errno != 0) return false;
+  return setpriority(PRIO_PROCESS, tid, now + nice) == 0;
 }
 
 }  // namespace hal

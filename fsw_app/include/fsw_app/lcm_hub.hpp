@@ -165,6 +165,13 @@ constexpr std::size_t kMaxCheckedChannels = 16;
 // Every receiver is called inside the hub's containment: whatever it
 // throws (a generated decoder, an allocation) ends there and is counted in
 // receiver_faults(), and the dispatcher goes on.
+//
+// LCM queues each subscription's messages between its receive thread and
+// the dispatcher, 30 by default, and drops beyond that without counting.
+// Under a flood on a channel (40,000 junk messages a second) the real
+// messages among them were lost there; kSubscriptionQueue lets the
+// dispatcher catch up instead (at about 1 us a refused message, a full
+// queue is a few milliseconds of work).
 class LcmHub {
  public:
   // Receivers judge messages' times against `clock` (the robot's clock, or
@@ -189,7 +196,7 @@ class LcmHub {
   void subscribe(const char* channel, Receiver* receiver) {
     if constexpr (has_input_counts<Receiver>(0)) register_input(channel, &receiver->input_counts());
     deliveries_.push_back(std::make_unique<Delivery>(Delivery{this, receiver}));
-    lcm_.subscribeFunction(
+    lcm::Subscription* sub = lcm_.subscribeFunction(
         channel,
         +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Delivery* del) {
           try {
@@ -200,7 +207,12 @@ class LcmHub {
           }
         },
         deliveries_.back().get());
+    if (sub != nullptr) sub->setQueueCapacity(kSubscriptionQueue);
   }
+
+  static constexpr int kSubscriptionQueue = 2048;
+  // The dispatcher thread's nice value above the tasks' (start()).
+  static constexpr int kDispatcherNice = 10;
 
   // The receivers' clock now, or kNoReceiverClock for a replay hub.
   std::int64_t receiver_now_us() const {

@@ -21,4 +21,9 @@ const char* to_string(RealtimeStatus status);
 // for nothing.
 RealtimeStatus request_realtime_priority(int priority);
 
+// Lowers the calling thread's weight under the normal scheduler by `nice`
+// (1..19; Linux threads each have their own nice value). Needs no
+// privilege. False, errno kept, when the kernel refused.
+bool lower_thread_priority(int nice);
+
 }  // namespace hal
