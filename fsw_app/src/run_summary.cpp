@@ -336,6 +336,27 @@ void print_replay_summary(const Options& opt, const RunSummary& s, std::FILE* ou
 
 namespace {
 
+// A string for a JSON document: the arm's state and fault texts come off
+// the bus and may hold anything a sender put there.
+std::string json_escaped(const std::string& text) {
+  std::string out;
+  out.reserve(text.size() + 8);
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (u < 0x20 || u >= 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\u%04x", u);
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 // "inputs": {"CHANNEL": {"accepted": n, "rejected": {"REASON": n, ...}}, ...}
 void write_inputs_json(const hrp::input_health_t& in, std::FILE* f) {
   std::fprintf(f, "\"inputs\": {");
@@ -454,9 +475,10 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       "\"arm_overruns\": %lld, \"arm_longest_gap_ms\": %.1f, \"arm_realtime\": \"%s\", "
       "\"camera_longest_gap_ms\": %.1f, \"estimator_longest_latency_ms\": %.1f, "
       "\"replayed_frames\": %lld, \"replayed_bad_frames\": %lld, \"replay_damaged\": %lld, ",
-      static_cast<unsigned long long>(opt.seed), opt.scenario.c_str(),
+      static_cast<unsigned long long>(opt.seed), json_escaped(opt.scenario).c_str(),
       task_names(opt.tasks).c_str(), s.perched ? "true" : "false", s.success ? "true" : "false",
-      s.arm.state_name.c_str(), s.arm.fault_name.c_str(), s.arm.fault_text.c_str(),
+      json_escaped(s.arm.state_name).c_str(), json_escaped(s.arm.fault_name).c_str(),
+      json_escaped(s.arm.fault_text).c_str(),
       s.arm.tilt_rad, s.arm.pan_rad, static_cast<unsigned long long>(s.receiver_faults),
       s.time_to_perch_s, s.grasp_error_m, static_cast<long long>(h.frames_received),
       static_cast<long long>(h.frames_processed), static_cast<long long>(h.frames_dropped),
@@ -472,7 +494,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
                "\"log_failure\": \"%s\", \"log_lost\": %lld, \"stopped\": %s, \"stop_signal\": %d, "
                "\"stopped_at_rest\": %s, ",
                static_cast<long long>(s.log_messages), static_cast<long long>(s.log_depth_frames),
-               static_cast<long long>(s.frames_published), s.log_failure.c_str(),
+               static_cast<long long>(s.frames_published), json_escaped(s.log_failure).c_str(),
                static_cast<long long>(s.log_lost), s.stop.stopped ? "true" : "false", s.stop.signal,
                s.stop.at_rest ? "true" : "false");
   write_camera_json(s, f);

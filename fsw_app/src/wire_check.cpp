@@ -1,5 +1,7 @@
 #include "fsw_app/wire_check.hpp"
 
+#include <cstring>
+
 namespace fsw_app {
 
 const char* to_string(WireFault fault) {
@@ -62,7 +64,9 @@ class WireReader {
       fail(WireFault::kTruncated);
       return;
     }
-    if (bytes_[pos_ + n - 1] != 0) {
+    // Exactly one terminator, at the end: a NUL inside would make the held
+    // string differ from what it says it is (its size counts past it).
+    if (bytes_[pos_ + n - 1] != 0 || std::memchr(bytes_ + pos_, 0, n - 1) != nullptr) {
       fail(WireFault::kUnterminated);
       return;
     }

@@ -216,6 +216,27 @@ void test_string_limit_and_terminator(void**) {
   bytes[at + 4 + 4] = 'E';  // the terminator overwritten
   assert_true(fsw_app::wire_check(&a, bytes.data(), bytes.size()) ==
               fsw_app::WireFault::kUnterminated);
+  // A NUL inside (found by the fuzzer): the held string would not be the
+  // one re-sent.
+  bytes = encode(a);
+  bytes[at + 4 + 1] = 0;
+  assert_true(fsw_app::wire_check(&a, bytes.data(), bytes.size()) ==
+              fsw_app::WireFault::kUnterminated);
+}
+
+// A utime near INT64_MIN after a held message overflowed the age test (the
+// fuzzer's find): every type's utime must be non-negative.
+void test_negative_utime_is_refused(void**) {
+  fsw_app::Mailbox<hrp::arm_state_t> box;
+  hrp::arm_state_t a = arm_state();
+  std::vector<std::uint8_t> bytes = encode(a);
+  box.deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()), fsw_app::kNoReceiverClock);
+  a.utime = INT64_MIN + 5;
+  bytes = encode(a);
+  box.deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()), fsw_app::kNoReceiverClock);
+  assert_int_equal(box.input_counts().rejected[static_cast<int>(InputReject::kOutOfRange)].load(),
+                   1);
+  assert_int_equal(box.input_counts().accepted.load(), 1);
 }
 
 // Whatever a receiver throws ends at the hub, counted; the next message is
@@ -266,6 +287,7 @@ int main() {
       cmocka_unit_test(test_input_health_lengths),
       cmocka_unit_test(test_depth_frame_point_count),
       cmocka_unit_test(test_string_limit_and_terminator),
+      cmocka_unit_test(test_negative_utime_is_refused),
       cmocka_unit_test(test_hub_contains_what_a_receiver_throws),
       cmocka_unit_test(test_walker_accepts_what_the_encoder_writes),
   };

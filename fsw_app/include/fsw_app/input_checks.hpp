@@ -109,11 +109,18 @@ bool decode_and_check(const void* data, std::uint32_t size, Msg* scratch, InputR
     *why = InputReject::kTrailingBytes;
     return false;
   }
+  // Every type is dated on a monotonic clock that starts at boot.
+  if (scratch->utime < 0) {
+    *why = InputReject::kOutOfRange;
+    return false;
+  }
   return check_message(*scratch, why);
 }
 
 // Whether `incoming` may replace `held` (both with utime): not older, unless
 // so much older that its sender must have restarted.
+// Both are non-negative (decode_and_check refuses a negative utime), so
+// the difference cannot overflow.
 inline bool is_fresh(std::int64_t incoming_utime, std::int64_t held_utime) {
   return incoming_utime >= held_utime || held_utime - incoming_utime > kRestartedSenderAge_us;
 }
