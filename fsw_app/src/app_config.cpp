@@ -219,12 +219,26 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
   }
   if (const JsonValue* v = top.object("perch")) {
     Section s(*v, "perch", path, error);
-    if (!s.only({"joint_speed_rad_s", "joint_tolerance_deg", "perched_tilt_limits_deg",
-                 "perched_pan_limits_deg", "open_speed", "close_speed", "stow_speed",
-                 "close_current_limit_ma", "open_done_counts", "stow_gripper_counts",
-                 "stow_gripper_tolerance", "grasp_min_counts", "grasp_max_counts",
-                 "grasp_min_current_ma", "grasp_settle_ms", "max_grasp_attempts",
-                 "handrail_lost_ms", "pose_lost_ms", "io_failures_to_fault", "timeouts_ms"})) {
+    if (!s.only({"joint_speed_rad_s",
+                 "joint_tolerance_deg",
+                 "perched_tilt_limits_deg",
+                 "perched_pan_limits_deg",
+                 "open_speed",
+                 "close_speed",
+                 "stow_speed",
+                 "close_current_limit_ma",
+                 "open_done_counts",
+                 "stow_gripper_counts",
+                 "stow_gripper_tolerance",
+                 "grasp_min_counts",
+                 "grasp_max_counts",
+                 "grasp_min_current_ma",
+                 "grasp_settle_ms",
+                 "max_grasp_attempts",
+                 "handrail_lost_ms",
+                 "pose_lost_ms",
+                 "io_failures_to_fault",
+                 "timeouts_ms"})) {
       return false;
     }
     arm::PerchConfig& p = c.perch;

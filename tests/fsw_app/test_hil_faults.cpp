@@ -24,8 +24,8 @@
 #include "hrp/robot_pose_t.hpp"
 
 #include "child_process.hpp"
-#include "hil_perch.hpp"
 #include "cmocka_cpp.hpp"
+#include "hil_perch.hpp"
 #include "summary_json.hpp"
 
 namespace {

@@ -113,9 +113,10 @@ void publish(lcm::LCM& lcm, const char* channel, const Msg& m) {
 
 // Runs one perch (approach-iss, `seed`) with `attack` running in a thread
 // on the same bus; repeats it when the host stalled a task.
-Outcome perch_under(int seed, const std::vector<std::string>& extra,
-                    const std::function<void(const std::string& url, std::atomic<bool>& stop)>& attack,
-                    const std::function<bool(const Outcome&)>& expected) {
+Outcome perch_under(
+    int seed, const std::vector<std::string>& extra,
+    const std::function<void(const std::string& url, std::atomic<bool>& stop)>& attack,
+    const std::function<bool(const Outcome&)>& expected) {
   Outcome o;
   for (int attempt = 0; attempt <= kStallRepeats; ++attempt) {
     const std::string url = url_of(g_port);
@@ -156,7 +157,8 @@ void test_malformed_strings_with_the_arm_deployed(void**) {
         while (!stop.load()) {
           for (std::int32_t len : {0, -1, 0x7fffffff}) {
             for (int k = 0; k < 4; ++k) {
-              bytes[first_string + k] = static_cast<std::uint8_t>(static_cast<std::uint32_t>(len) >> (24 - 8 * k));
+              bytes[first_string + k] =
+                  static_cast<std::uint8_t>(static_cast<std::uint32_t>(len) >> (24 - 8 * k));
             }
             lcm.publish("ARM_STATE", bytes.data(), static_cast<unsigned>(bytes.size()));
             ++sent;
@@ -203,10 +205,11 @@ void test_dated_ahead_and_jumping_messages(void**) {
         publish(lcm, "IMU_SAMPLE", jump);
       },
       perched_within_1cm);
-  std::printf("  IMU_SAMPLE FUTURE %.0f, SEQUENCE %.0f; ROBOT_POSE FUTURE %.0f; imu_seq_gaps %.0f\n",
-              input_rejections(o, "IMU_SAMPLE", "FUTURE"), input_rejections(o, "IMU_SAMPLE", "SEQUENCE"),
-              input_rejections(o, "ROBOT_POSE", "FUTURE"),
-              nested(o, {"localization", "filter", "imu_seq_gaps"}));
+  std::printf(
+      "  IMU_SAMPLE FUTURE %.0f, SEQUENCE %.0f; ROBOT_POSE FUTURE %.0f; imu_seq_gaps %.0f\n",
+      input_rejections(o, "IMU_SAMPLE", "FUTURE"), input_rejections(o, "IMU_SAMPLE", "SEQUENCE"),
+      input_rejections(o, "ROBOT_POSE", "FUTURE"),
+      nested(o, {"localization", "filter", "imu_seq_gaps"}));
   assert_true(perched_within_1cm(o));
   assert_true(input_rejections(o, "IMU_SAMPLE", "FUTURE") >= 1);
   assert_true(input_rejections(o, "IMU_SAMPLE", "SEQUENCE") >= 1);
@@ -248,7 +251,8 @@ void test_copied_imu_samples_are_refused(void**) {
 void test_no_pose_mid_approach_holds_then_folds(void**) {
   const Outcome o = run_expecting("approach-iss", {"--seed", "5", "--fault", "imu-lost@2"},
                                   [](const Outcome& r) { return r.text("fault") == "POSE_LOST"; });
-  std::printf("  arm %.3f / %.3f rad at the end\n", o.number("arm_tilt_rad"), o.number("arm_pan_rad"));
+  std::printf("  arm %.3f / %.3f rad at the end\n", o.number("arm_tilt_rad"),
+              o.number("arm_pan_rad"));
   assert_string_equal(o.text("fault").c_str(), "POSE_LOST");
   assert_string_equal(o.text("arm_state").c_str(), "FAULT");
   assert_false(o.flag("perched"));
@@ -317,7 +321,8 @@ void flood(const std::string& url, std::atomic<bool>& stop, double per_s, double
   const auto period = std::chrono::microseconds(1000);
   const int per_tick = static_cast<int>(per_s / 1000.0);
   auto next = t0;
-  while (!stop.load() && std::chrono::steady_clock::now() - t0 < std::chrono::duration<double>(seconds)) {
+  while (!stop.load() &&
+         std::chrono::steady_clock::now() - t0 < std::chrono::duration<double>(seconds)) {
     for (int k = 0; k < per_tick; ++k) {
       const auto& [channel, hash] = channels[rng() % channels.size()];
       const std::size_t size = 8 + rng() % 120;

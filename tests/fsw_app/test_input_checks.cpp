@@ -123,7 +123,8 @@ void test_command_with_trailing_bytes_is_not_queued(void**) {
 
   abort.tilt_rad = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::uint8_t> nan_bytes = encode(abort);
-  queue.deliver(nan_bytes.data(), static_cast<std::uint32_t>(nan_bytes.size()), fsw_app::kNoReceiverClock);
+  queue.deliver(nan_bytes.data(), static_cast<std::uint32_t>(nan_bytes.size()),
+                fsw_app::kNoReceiverClock);
   assert_false(queue.pop(&out));
   assert_int_equal(rejected(queue.input_counts(), InputReject::kNotFinite), 1);
 

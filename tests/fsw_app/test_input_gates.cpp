@@ -148,9 +148,10 @@ void test_rate_bound(void**) {
     taken += drain(&q);
   }
   const auto bound = fsw_app::rate_bound(static_cast<const hrp::imu_sample_t*>(nullptr));
-  std::printf("  2000 samples in 1 s: %zu taken (bound %.0f/s, burst %.0f), %llu refused\n", taken,
-              bound.max_per_s, bound.burst,
-              static_cast<unsigned long long>(rejected(q.input_counts(), InputReject::kRateLimited)));
+  std::printf(
+      "  2000 samples in 1 s: %zu taken (bound %.0f/s, burst %.0f), %llu refused\n", taken,
+      bound.max_per_s, bound.burst,
+      static_cast<unsigned long long>(rejected(q.input_counts(), InputReject::kRateLimited)));
   assert_true(taken <= static_cast<std::size_t>(bound.max_per_s + bound.burst) + 1);
   assert_true(taken >= static_cast<std::size_t>(bound.max_per_s));
   assert_int_equal(rejected(q.input_counts(), InputReject::kRateLimited) + taken, 2000);
@@ -190,7 +191,8 @@ void test_refused_messages_take_no_token(void**) {
 // the past's clock), but still counters.
 void test_replay_judges_counters_only(void**) {
   ImuQueue q;
-  for (int k = 1; k <= 1000; ++k) deliver(&q, imu(k, kNow_us + 1'000'000'000), fsw_app::kNoReceiverClock);
+  for (int k = 1; k <= 1000; ++k)
+    deliver(&q, imu(k, kNow_us + 1'000'000'000), fsw_app::kNoReceiverClock);
   deliver(&q, imu(1000, kNow_us), fsw_app::kNoReceiverClock);
   assert_int_equal(q.input_counts().accepted.load(), 1000);
   assert_int_equal(rejected(q.input_counts(), InputReject::kSequence), 1);

@@ -139,11 +139,13 @@ void test_frames_cross_lcm_without_allocating(void**) {
     msg.encode(encoded[k].data(), 0, static_cast<int>(encoded[k].size()));
   }
   publisher.on_new_data(frames[0].view(0, clock.now_us()));  // warm up
-  source.deliver(encoded[0].data(), static_cast<std::uint32_t>(encoded[0].size()), fsw_app::kNoReceiverClock);
+  source.deliver(encoded[0].data(), static_cast<std::uint32_t>(encoded[0].size()),
+                 fsw_app::kNoReceiverClock);
   alloc_counter::arm();
   for (int n = 1; n <= 30; ++n) {
     publisher.on_new_data(frames[n % 2].view(static_cast<std::uint64_t>(n), clock.now_us()));
-    source.deliver(encoded[n % 2].data(), static_cast<std::uint32_t>(encoded[n % 2].size()), fsw_app::kNoReceiverClock);
+    source.deliver(encoded[n % 2].data(), static_cast<std::uint32_t>(encoded[n % 2].size()),
+                   fsw_app::kNoReceiverClock);
   }
   const long allocations = alloc_counter::disarm();
   assert_int_equal(publisher.published(), 31);

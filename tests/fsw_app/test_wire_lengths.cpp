@@ -99,8 +99,8 @@ void each_bad_length_is_refused(const char* channel, const std::vector<std::uint
       hub.publish_raw(channel, bytes.data(), bytes.size());
       assert_true(hub.handle(100) > 0);
       ++sent;
-      assert_int_equal(box.input_counts().rejected[static_cast<int>(InputReject::kBadLength)].load(),
-                       sent);
+      assert_int_equal(
+          box.input_counts().rejected[static_cast<int>(InputReject::kBadLength)].load(), sent);
     }
   }
   assert_int_equal(box.input_counts().accepted.load(), 1);
@@ -184,9 +184,10 @@ void test_depth_frame_point_count(void**) {
        bad_values({"num_points", at, fsw_app::kMaxWireDepthPoints}, good.size())) {
     std::vector<std::uint8_t> bytes = good;
     write_be32(&bytes, at, value);
-    const fsw_app::FrameMsgStatus st = fsw_app::decode_depth_frame(bytes.data(), bytes.size(), 8, &out);
-    const fsw_app::WireFault wf =
-        fsw_app::wire_check(static_cast<const hrp::depth_frame_t*>(nullptr), bytes.data(), bytes.size());
+    const fsw_app::FrameMsgStatus st =
+        fsw_app::decode_depth_frame(bytes.data(), bytes.size(), 8, &out);
+    const fsw_app::WireFault wf = fsw_app::wire_check(
+        static_cast<const hrp::depth_frame_t*>(nullptr), bytes.data(), bytes.size());
     std::printf("  DEPTH_FRAME num_points = %d (%s): %s, walker %s\n", value, what.c_str(),
                 fsw_app::to_string(st), fsw_app::to_string(wf));
     assert_true(st != fsw_app::FrameMsgStatus::kOk);

@@ -44,7 +44,7 @@ struct PerchConfig {
   int grasp_min_current_ma = 400;  // holding force present
   int grasp_settle_ms = 200;       // the hold must last this long
   std::uint8_t max_grasp_attempts = 3;
-  int handrail_lost_ms = 1500;            // approach: no estimate this long is a loss
+  int handrail_lost_ms = 1500;  // approach: no estimate this long is a loss
   // Approach: the perch manager without a usable robot pose this long (it
   // holds the robot still meanwhile) aborts the perch, the arm folded.
   int pose_lost_ms = 2000;

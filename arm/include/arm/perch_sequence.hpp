@@ -11,7 +11,8 @@
 // joints held where they are (torque off if a servo is in alarm), the
 // gripper stopped unless it holds a handrail, in which case it keeps
 // holding. A robot pose lost during the approach (POSE_LOST) folds the arm
-// instead: the robot cannot tell where the wall is. Only STOWED, PERCHED and FAULT wait without a timeout.
+// instead: the robot cannot tell where the wall is. Only STOWED, PERCHED
+// and FAULT wait without a timeout.
 //
 // step() does all the I/O and is called at a fixed rate by the arm task,
 // with the time injected. Nothing allocates; every loop is bounded.
@@ -78,7 +79,7 @@ class PerchSequence {
   std::uint8_t entry_failures_ = 0;
   // Where CALIBRATING goes when it finishes.
   PerchState after_calibration_ = PerchState::kStowed;
-  std::int64_t hold_since_us_ = -1;  // grasp check: when the hold was first seen
+  std::int64_t hold_since_us_ = -1;       // grasp check: when the hold was first seen
   std::int64_t approach_started_us_ = 0;  // entry into DEPLOYING
 };
 

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "fsw_app/wire_check.hpp"
 #include "hrp/approach_status_t.hpp"
 #include "hrp/arm_state_t.hpp"
 #include "hrp/body_velocity_command_t.hpp"
@@ -19,7 +20,6 @@
 #include "hrp/localization_health_t.hpp"
 #include "hrp/perch_command_t.hpp"
 #include "hrp/robot_pose_t.hpp"
-#include "fsw_app/wire_check.hpp"
 
 namespace fsw_app {
 

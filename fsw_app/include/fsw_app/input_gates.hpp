@@ -48,18 +48,40 @@ struct RateBound {
 // IMU 62.5 Hz; GP up to 10 Hz; the localizer's pose up to 100 Hz; the
 // estimator up to 45 frames/s; the arm and manager loops up to 200 Hz
 // (app_config.cpp's limits); health about 1 Hz; commands from an operator.
-constexpr RateBound rate_bound(const hrp::imu_sample_t*) { return {250.0, 32.0}; }
-constexpr RateBound rate_bound(const hrp::gp_pose_t*) { return {40.0, 8.0}; }
-constexpr RateBound rate_bound(const hrp::robot_pose_t*) { return {400.0, 32.0}; }
-constexpr RateBound rate_bound(const hrp::handrail_estimate_t*) { return {100.0, 16.0}; }
-constexpr RateBound rate_bound(const hrp::arm_state_t*) { return {400.0, 32.0}; }
-constexpr RateBound rate_bound(const hrp::approach_status_t*) { return {400.0, 32.0}; }
-constexpr RateBound rate_bound(const hrp::body_velocity_command_t*) { return {400.0, 32.0}; }
-constexpr RateBound rate_bound(const hrp::estimator_health_t*) { return {20.0, 8.0}; }
-constexpr RateBound rate_bound(const hrp::perch_command_t*) { return {50.0, 16.0}; }
+constexpr RateBound rate_bound(const hrp::imu_sample_t*) {
+  return {250.0, 32.0};
+}
+constexpr RateBound rate_bound(const hrp::gp_pose_t*) {
+  return {40.0, 8.0};
+}
+constexpr RateBound rate_bound(const hrp::robot_pose_t*) {
+  return {400.0, 32.0};
+}
+constexpr RateBound rate_bound(const hrp::handrail_estimate_t*) {
+  return {100.0, 16.0};
+}
+constexpr RateBound rate_bound(const hrp::arm_state_t*) {
+  return {400.0, 32.0};
+}
+constexpr RateBound rate_bound(const hrp::approach_status_t*) {
+  return {400.0, 32.0};
+}
+constexpr RateBound rate_bound(const hrp::body_velocity_command_t*) {
+  return {400.0, 32.0};
+}
+constexpr RateBound rate_bound(const hrp::estimator_health_t*) {
+  return {20.0, 8.0};
+}
+constexpr RateBound rate_bound(const hrp::perch_command_t*) {
+  return {50.0, 16.0};
+}
 // One process each, about once a second.
-constexpr RateBound rate_bound(const hrp::input_health_t*) { return {20.0, 8.0}; }
-constexpr RateBound rate_bound(const hrp::localization_health_t*) { return {20.0, 8.0}; }
+constexpr RateBound rate_bound(const hrp::input_health_t*) {
+  return {20.0, 8.0};
+}
+constexpr RateBound rate_bound(const hrp::localization_health_t*) {
+  return {20.0, 8.0};
+}
 
 // The time a message is dated: its utime, and where it has one its capture
 // time (never after the other on an honest sender).

@@ -39,10 +39,10 @@ constexpr std::int32_t kMaxWireDepthPoints = 224 * 172;
 
 enum class WireFault : std::uint8_t {
   kNone,
-  kTruncated,         // a field past the end of the bytes
-  kBadStringLength,   // below 1 (every LCM string carries its terminator) or above the limit
-  kUnterminated,      // a string whose last byte is not its terminator, or with one before it
-  kBadArrayCount,     // an array count below 0 or above what the receiver holds
+  kTruncated,        // a field past the end of the bytes
+  kBadStringLength,  // below 1 (every LCM string carries its terminator) or above the limit
+  kUnterminated,     // a string whose last byte is not its terminator, or with one before it
+  kBadArrayCount,    // an array count below 0 or above what the receiver holds
 };
 const char* to_string(WireFault fault);
 
