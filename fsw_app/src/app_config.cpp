@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "formats/detector_config_io.hpp"
+#include "estimator/config_io.hpp"
 #include "formats/json.hpp"
 #include "formats/text_file.hpp"
 #include "hal/use_case.hpp"
@@ -189,7 +189,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     }
   }
   if (const JsonValue* v = top.object("estimator")) {
-    if (!formats::read_detector_config(*v, path, &c.estimator, error, "estimator.")) return false;
+    if (!estimator::read_detector_config(*v, path, &c.estimator, error, "estimator.")) return false;
   }
   if (const JsonValue* v = top.object("arm")) {
     Section s(*v, "arm", path, error);

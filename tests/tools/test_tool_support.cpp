@@ -8,7 +8,7 @@
 
 #include "cmocka_cpp.hpp"
 #include "detection_json.hpp"
-#include "formats/detector_config_io.hpp"
+#include "estimator/config_io.hpp"
 #include "output_dir.hpp"
 #include "png_image.hpp"
 
@@ -18,10 +18,10 @@ void test_config_file(void**) {
   estimator::DetectorConfig cfg;
   std::string error;
   assert_true(
-      formats::parse_detector_config("{\n \"handrail\": {\"kind\": \"round\", \"bar_length_m\": "
-                                     "1.055},\n \"line_iterations\": 120,\n"
-                                     " \"gripper_angle_deg\": 90\n}",
-                                     "c.json", &cfg, &error));
+      estimator::parse_detector_config("{\n \"handrail\": {\"kind\": \"round\", \"bar_length_m\": "
+                                       "1.055},\n \"line_iterations\": 120,\n"
+                                       " \"gripper_angle_deg\": 90\n}",
+                                       "c.json", &cfg, &error));
   assert_near(cfg.handrail.bar_length_m, 1.055, 1e-6);
   assert_near(cfg.handrail.bar_width_m, 0.035, 1e-6);
   assert_int_equal(cfg.line_iterations, 120);
@@ -29,7 +29,7 @@ void test_config_file(void**) {
   assert_int_equal(cfg.handrail_type_count, 5);  // every ISS length unless told
 
   estimator::DetectorConfig two;
-  assert_true(formats::parse_detector_config(
+  assert_true(estimator::parse_detector_config(
       "{\"handrail_types\": [\"30 in\", \"module rail\"], \"mount_search_m\": 0.04, "
       "\"mount_bay_min_m\": 0.3}",
       "t.json", &two, &error));
@@ -39,20 +39,21 @@ void test_config_file(void**) {
   assert_near(two.mount_search_m, 0.04, 1e-6);
   assert_near(two.mount_bay_min_m, 0.3, 1e-6);
   estimator::DetectorConfig none;
-  assert_true(formats::parse_detector_config("{\"handrail_types\": []}", "n.json", &none, &error));
+  assert_true(
+      estimator::parse_detector_config("{\"handrail_types\": []}", "n.json", &none, &error));
   assert_int_equal(none.handrail_type_count, 0);
   assert_true(none.plane_faces_normal);
   assert_true(
-      formats::parse_detector_config("{\"plane_faces_normal\": false}", "p.json", &none, &error));
+      estimator::parse_detector_config("{\"plane_faces_normal\": false}", "p.json", &none, &error));
   assert_false(none.plane_faces_normal);
   assert_true(none.track_beside);
-  assert_true(formats::parse_detector_config(
+  assert_true(estimator::parse_detector_config(
       "{\"track_beside\": false, \"track_beside_min_pixels\": 30}", "t.json", &none, &error));
   assert_false(none.track_beside);
   assert_int_equal(none.track_beside_min_pixels, 30);
   assert_true(none.cross_faces_wall);
   assert_true(
-      formats::parse_detector_config("{\"cross_faces_wall\": false}", "f.json", &none, &error));
+      estimator::parse_detector_config("{\"cross_faces_wall\": false}", "f.json", &none, &error));
   assert_false(none.cross_faces_wall);
 
   struct Case {
@@ -88,7 +89,7 @@ void test_config_file(void**) {
   };
   for (const Case& c : cases) {
     estimator::DetectorConfig before;
-    assert_false(formats::parse_detector_config(c.text, "c.json", &before, &error));
+    assert_false(estimator::parse_detector_config(c.text, "c.json", &before, &error));
     if (error != c.error) print_error("got: %s\nwant: %s\n", error.c_str(), c.error);
     assert_string_equal(error.c_str(), c.error);
   }

@@ -15,9 +15,9 @@
 #include "common/frame_convert.hpp"
 #include "common/output_dir.hpp"
 #include "common/stage_pictures.hpp"
+#include "estimator/config_io.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "estimator/handrail_tracker.hpp"
-#include "formats/detector_config_io.hpp"
 #include "formats/pcd_io.hpp"
 
 namespace {
@@ -205,7 +205,7 @@ int main(int argc, char** argv) {
   if (handrail == "round")
     cfg.handrail = estimator::paper_round_handrail(cfg.handrail.bar_length_m);
   std::string error;
-  if (!config_path.empty() && !formats::load_detector_config(config_path, &cfg, &error)) {
+  if (!config_path.empty() && !estimator::load_detector_config(config_path, &cfg, &error)) {
     std::fprintf(stderr, "hrdetect: %s\n", error.c_str());
     return 2;
   }

@@ -16,11 +16,11 @@
 
 #include "common/frame_convert.hpp"
 #include "common/progress.hpp"
+#include "estimator/config_io.hpp"
 #include "estimator/handrail_detector.hpp"
 #include "eval_chart.hpp"
 #include "eval_metrics.hpp"
 #include "eval_targets.hpp"
-#include "formats/detector_config_io.hpp"
 #include "output_dir.hpp"
 #include "sim_camera_path.hpp"
 #include "sim_hal/scenario.hpp"
@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
   estimator::DetectorConfig base_cfg;
   if (!config_path.empty()) {
     std::string config_error;
-    if (!formats::load_detector_config(config_path, &base_cfg, &config_error)) {
+    if (!estimator::load_detector_config(config_path, &base_cfg, &config_error)) {
       std::fprintf(stderr, "hreval: --config: %s\n", config_error.c_str());
       return 2;
     }

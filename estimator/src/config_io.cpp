@@ -1,4 +1,4 @@
-#include "formats/detector_config_io.hpp"
+#include "estimator/config_io.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include "formats/json.hpp"
 #include "formats/text_file.hpp"
 
-namespace formats {
+namespace estimator {
 namespace {
 
 using formats::JsonValue;
@@ -287,4 +287,4 @@ bool load_detector_config(const std::string& path, estimator::DetectorConfig* cf
   return parse_detector_config(text, path, cfg, error);
 }
 
-}  // namespace formats
+}  // namespace estimator
