@@ -24,6 +24,10 @@ import sys
 DEV_DIR = None
 DEV_SEED_OFFSET = 50000
 USAGE = "usage: generate.py [--dev DIR [--dev-offset N]]"
+if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+    print(__doc__)
+    print(USAGE)
+    sys.exit(0)
 if len(sys.argv) in (3, 5) and sys.argv[1] == "--dev":
     DEV_DIR = os.path.abspath(sys.argv[2])
     if len(sys.argv) == 5:
@@ -31,7 +35,8 @@ if len(sys.argv) in (3, 5) and sys.argv[1] == "--dev":
             sys.exit("generate.py: --dev-offset needs a positive integer, got %r\n%s" % (" ".join(sys.argv[3:]), USAGE))
         DEV_SEED_OFFSET = int(sys.argv[4])
 elif len(sys.argv) != 1:
-    sys.exit(USAGE)
+    sys.stderr.write("generate.py: unknown arguments %r\n%s (see --help)\n" % (" ".join(sys.argv[1:]), USAGE))
+    sys.exit(2)
 
 WALL = {"center": [0, 0, 0], "normal": [1, 0, 0], "up": [0, 0, 1], "size": [4.0, 2.5], "reflectivity": 0.6}
 

@@ -101,6 +101,21 @@ void test_the_worst_frame_is_named_with_its_reason_and_drawn(void**) {
   assert_int_equal(h, 8 + 2 * 20 + 2 * (513 + 6) + 6);
 }
 
+// A frame count that is not one (it was: "abc" ran 0 frames, wrote a
+// report of nan over the last one, exit 0): exit 2 naming it, and no
+// report written.
+void test_a_bad_frame_count_is_refused(void**) {
+  const std::string out = g_dir + "/bad-count";
+  for (const char* bad : {"abc", "-3", "2x", "0"}) {
+    const Result r = run({"--out", out, "--max-frames", bad,
+                          testing_support::source_path("sim_hal/scenarios/table2-iss.json")});
+    assert_int_equal(r.exit_status, 2);
+    assert_true(r.out.find(std::string("--max-frames must be a whole number")) !=
+                std::string::npos);
+  }
+  assert_int_not_equal(access((out + "/report.md").c_str(), F_OK), 0);
+}
+
 void test_a_scenario_without_failures_has_no_worst_frame(void**) {
   const std::string out = g_dir + "/clean";
   const Result r = run({"--out", out, "--max-frames", "2",
@@ -178,6 +193,7 @@ int main(int argc, char** argv) {
   g_dir = scratch.path();
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_the_worst_frame_is_named_with_its_reason_and_drawn),
+      cmocka_unit_test(test_a_bad_frame_count_is_refused),
       cmocka_unit_test(test_a_scenario_without_failures_has_no_worst_frame),
       cmocka_unit_test(test_the_issue_17_table_pools_the_rack_walls),
       cmocka_unit_test(test_an_unreadable_scenario_is_reported_and_the_rest_still_run),

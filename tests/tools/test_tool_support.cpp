@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "cli_number.hpp"
 #include "cmocka_cpp.hpp"
 #include "detection_json.hpp"
 #include "estimator/config_io.hpp"
@@ -190,6 +191,19 @@ void test_image_text_and_png(void**) {
 
 // A tool's output folder is made with its missing parents; a file standing
 // where a folder should be is refused with its path named.
+// Command-line numbers: the whole text, within its range.
+void test_whole_numbers(void**) {
+  long long v = 0;
+  std::string why;
+  assert_true(tools::parse_whole_number("25", 1, 100, &v, &why));
+  assert_int_equal(v, 25);
+  for (const char* bad : {"abc", "2x", "", "-3", "0", "101", "99999999999999999999", " 5"}) {
+    assert_false(tools::parse_whole_number(bad, 1, 100, &v, &why));
+    assert_true(why.find(std::string("'") + bad + "'") != std::string::npos);
+  }
+  assert_int_equal(v, 25);
+}
+
 void test_output_dir(void**) {
   char base_template[] = "/tmp/hrp-outdir-XXXXXX";
   const char* base = mkdtemp(base_template);
@@ -227,7 +241,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_config_file), cmocka_unit_test(test_detection_json),
       cmocka_unit_test(test_mounts_json), cmocka_unit_test(test_image_text_and_png),
-      cmocka_unit_test(test_output_dir),
+      cmocka_unit_test(test_output_dir), cmocka_unit_test(test_whole_numbers),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

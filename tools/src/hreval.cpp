@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli_number.hpp"
 #include "common/frame_convert.hpp"
 #include "common/progress.hpp"
 #include "estimator/config_io.hpp"
@@ -236,7 +237,13 @@ int main(int argc, char** argv) {
     } else if (a == "--out") {
       out_dir = next("--out");
     } else if (a == "--max-frames") {
-      max_frames = std::atol(next("--max-frames").c_str());
+      long long n = 0;
+      std::string why;
+      if (!tools::parse_whole_number(next("--max-frames"), 1, 1000000, &n, &why)) {
+        std::fprintf(stderr, "hreval: --max-frames %s\n", why.c_str());
+        return 2;
+      }
+      max_frames = static_cast<long>(n);
     } else if (a == "--true-length") {
       true_length = true;
     } else if (a == "--seed-offset") {

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "common/cli_number.hpp"
 #include "common/depth_picture.hpp"
 #include "common/output_dir.hpp"
 #include "common/progress.hpp"
@@ -93,10 +94,20 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "hrsim: --camera is depth or raw, not '%s'\n", camera_path.c_str());
         return 2;
       }
-    } else if (a == "--max-frames") {
-      max_frames = std::atol(next("--max-frames"));
-    } else if (a == "--seed") {
-      seed = std::atoll(next("--seed"));
+    } else if (a == "--max-frames" || a == "--seed") {
+      long long n = 0;
+      std::string why;
+      const bool frames = a == "--max-frames";
+      if (!tools::parse_whole_number(next(a.c_str()), frames ? 1 : 0, frames ? 1000000 : static_cast<long long>(INT64_MAX),
+                                     &n, &why)) {
+        std::fprintf(stderr, "hrsim: %s %s\n", a.c_str(), why.c_str());
+        return 2;
+      }
+      if (frames) {
+        max_frames = static_cast<long>(n);
+      } else {
+        seed = static_cast<decltype(seed)>(n);
+      }
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "hrsim: unknown option '%s' (see --help)\n", a.c_str());
       return 2;
