@@ -168,7 +168,7 @@ for s in (table2("round"), table2("iss"), table2("iss_mesh"), sweep(), approach(
     write(s)
 
 # ---------------------------------------------------------------------------
-# ISS rack walls (issue #17): scenes built from the station's facts, not from
+# ISS rack walls: scenes built from the station's facts, not from
 # what the detector finds easy.
 #
 # - Handrails stand on seat tracks: strips 2.6 cm wide, 1.3 cm proud of the

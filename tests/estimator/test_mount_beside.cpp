@@ -124,7 +124,7 @@ void test_a_bar_on_a_track_shows_the_foot_beside_it(void**) {
   assert_true(track_shows_beside(split(nothing, 0.0f), cfg));
   // A neighbouring face flush with the track's top on one side (1.3 cm
   // above the track's face, 3 mm off the mount's level), the track's own
-  // face on the other (session 33): the level runs on where the
+  // face on the other: the level runs on where the
   // neighbour is, the foot shows where the face is, and the bar stands on
   // its track. The neighbour beginning 2 cm out on that side, the track's
   // face between: still standing.
@@ -276,7 +276,7 @@ void test_the_mount_under_a_bar_beside_it(void**) {
   assert_false(find_mount_under_bar(m, cfg, kFront, 0.004f, &mount, plane_level, 1));
   // A seat track on a strip 1.64 cm behind the plane tops out 3.4 mm
   // under it, nearer the plane than a face of its own could be: the bar
-  // 5.5 mm lower than a flat-wall bar stands on that track (session 30).
+  // 5.5 mm lower than a flat-wall bar stands on that track.
   const float frame_level[1] = {-0.0164f};
   assert_true(find_mount_under_bar(m, cfg, kFront - 0.0055f, 0.004f, &mount, frame_level, 1));
   assert_near(mount, -0.0164f + 0.013f, 1e-6f);

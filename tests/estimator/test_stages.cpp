@@ -206,7 +206,7 @@ void test_gap_pass_matches_a_scalar_reference(void**) {
     if (!plane_out) assert_true(offset > 0.0f || plane_listed > 10);
   }
 
-  // Faces in view as the probes' wall (session 35). Faces 1.5, 3 and 4.5 cm
+  // Faces in view as the probes' wall. Faces 1.5, 3 and 4.5 cm
   // and 7 cm over the plane; on the plane's own search the 3 and 4.5 cm
   // faces stand between the wall tolerance and the gap window (5.7 cm for
   // the paper's handrail), the 1.5 cm one is wall anyway and the 7 cm one

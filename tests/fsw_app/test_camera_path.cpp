@@ -1,4 +1,4 @@
-// Which path the frames took, as fsw_app reports it (issue #20): --hal sim
+// Which path the frames took, as fsw_app reports it: --hal sim
 // runs the raw path by default (the raw renderer's phase frames through the
 // robot's ToF processing), --camera depth the depth renderer, and recorded
 // frames are "replay"; the summary JSON names the path and the processing's

@@ -62,7 +62,7 @@ void test_clean_perch(void**) {
   assert_null(inputs->find("TRUTH_POSE"));
 }
 
-// The view that once fed the filter a wrong handrail (session 25's run 14):
+// The view that once fed the filter a wrong handrail (a perch-runs run):
 // the 0.55 m round rail 1.2 m out, across the gripper's angle at the start
 // of the approach, where a line crossing the bar was taken for an 8.5 in
 // handrail in five of the first seven frames and kicked the filter. Every

@@ -1,5 +1,5 @@
 // The hardware-in-loop perch with every depth frame through the USB driver
-// (issue #21): fsw_app --hal sim --camera usb renders the world into the
+// fsw_app --hal sim --camera usb renders the world into the
 // emulated Pico Flexx (umockdev), and the robot's driver reads it through
 // real libusb, then the ToF processing, the camera task, the estimator. The
 // perch must land within 1 cm with no frame lost; pulling the cable and

@@ -1,5 +1,5 @@
-// Handrail-like cables against the handrail on the simulator's walls
-// (issue #17): each test of what a handrail is beyond its height (ramps at
+// Handrail-like cables against the handrail on the simulator's walls:
+// each test of what a handrail is beyond its height (ramps at
 // the ends, whether the view's edge cuts them or not, and the side face seen
 // from across the bar) refuses the cable, only that test refuses it, and the
 // ISS handrail on its seat track seen the same way is still found.
@@ -290,7 +290,7 @@ void test_a_cable_over_a_rack_face_stands_on_no_track(void**) {
   assert_int_equal(seen.cable.found_lenient, seen.frames);
 }
 
-// The same cable over the dominant plane's own face (session 33). That is
+// The same cable over the dominant plane's own face. That is
 // the flat-wall case, where a handrail stands on the plane itself, and the
 // seat-track test above is not asked; but among rack faces (the plane's
 // faces a step or more apart) a handrail's seat track shows a step beside
@@ -370,7 +370,7 @@ void test_a_cable_over_the_planes_own_face_among_rack_faces_is_refused(void**) {
   // Seen from below, the prouder face below the strip is the dominant
   // plane and the rail is seated off it, on its track 2.5 cm behind: the
   // face above runs on at the mount's level on that side, the track's own
-  // face shows on the other. Refused as on no track until session 33's
+  // face shows on the other. Refused as on no track before the
   // second development set showed such layouts.
   int below_found = 0, below_off_plane = 0;
   for (std::size_t f = 0; f < 3; ++f) {
@@ -396,7 +396,7 @@ void test_a_cable_over_the_planes_own_face_among_rack_faces_is_refused(void**) {
 // view drops straight down (no ramp: into a connector flush with the
 // face). Past that end the face runs on under where the track would be,
 // level with the face on both sides, and the cable is refused
-// (NO_TRACK_PAST_END, session 33); a detector that does not ask takes it.
+// (NO_TRACK_PAST_END); a detector that does not ask takes it.
 // The ISS handrail on a real track, the track running on 30 cm past its
 // end, seen the same way, is found.
 void test_a_hidden_track_must_run_on_past_the_end(void**) {
@@ -472,8 +472,7 @@ double largest_y_of_ends(const estimator::HandrailDetection& d, const Eigen::Iso
 // ending 2.5 cm short of the same box never reaches over it either, and is
 // found, that end seen where it is, in all views but one: there, seen
 // across the gap, the box's side face rises right past the rail's end, and
-// the rail is refused as the cable is (RAMP_END; sim_hal/README.md,
-// "Session 31").
+// the rail is refused as the cable is (RAMP_END).
 void test_the_end_walk_does_not_run_on_over_a_box(void**) {
   constexpr double kBoxStart_m = 0.05, kRailEnd_m = 0.025;
   sim_hal::Scene cable_scene = flat_wall_scene(), rail_scene = flat_wall_scene();

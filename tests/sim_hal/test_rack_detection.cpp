@@ -1,4 +1,4 @@
-// The detector on the simulator's ISS rack walls (issue #17): a handrail on
+// The detector on the simulator's ISS rack walls: a handrail on
 // a seat track 1.3 cm proud of the rack face that fills the view, found,
 // seated on the track and, seen end to end, named as the ISS type it is;
 // rack walls and corners without a handrail give nothing. The flat-wall
@@ -174,7 +174,7 @@ void test_rack_walls_without_a_handrail_give_nothing(void**) {
 // The 8.5 in rail approached with its rack's frame seen obliquely: the
 // frame, 1 to 2 cm proud of the face that fills the view, makes no surface
 // peak of its own in these frames, and no surface mount seats the bar
-// (NO_CANDIDATES before session 21). The bar's front makes a peak where
+// (it was once NO_CANDIDATES). The bar's front makes a peak where
 // the track over that frame puts it, and the mount read off it holds the
 // rail; with front_peak_mounts 0 the frames are missed as before.
 void test_a_mount_read_off_the_bars_front_holds_the_rail(void**) {
@@ -204,7 +204,7 @@ void test_a_mount_read_off_the_bars_front_holds_the_rail(void**) {
 
 // The station's shortest bar (8.5 in, 0.20 m) running out of the image
 // with 35 to 50 % of its centre line in view (the simulator's truth): a
-// handrail in reach by issue #17's definition. The 8 cm clutter floor
+// handrail in reach by the evaluation's definition. The 8 cm clutter floor
 // alone refused a fifth of these views; 35 % of the shortest configured
 // bar (7 cm), where the image's edge cuts the bar, accepts them.
 void test_the_shortest_bar_partly_in_view_is_found(void**) {
@@ -487,7 +487,7 @@ void test_a_find_with_no_end_in_view_does_not_end_the_mount_search(void**) {
 // patch under it) is refused (CROSSES_BAR): measured as it stood, the end
 // walk found the bar's sides as two ends a few centimetres apart, and the
 // 0.55 m round rail of the paper's Table 2 scene passed as a 0.20 m (8.5 in)
-// handrail with both ends seen. Issue #19's HIL run met it from its start
+// handrail with both ends seen. A HIL run met it from its start
 // pose, 1.2 m out, with the gripper's angle across the bar (fsw_app's
 // configuration): the short find won on the gripper's angle, and its first
 // updates kicked the filter. Seen from there over 30 frames (each its own

@@ -1,5 +1,5 @@
 // The cross test's probes on a rack wall whose face above the rail stands
-// higher than the rail's seat track (issue #17's facts: neighbouring rack
+// higher than the rail's seat track (the station's facts: neighbouring rack
 // faces differ by 1 to 5 cm, a gap between racks about 2 cm beside the
 // track). The rail's track is on a face 1.35 cm proud; 3 cm above the
 // rail's centre line a 2.9 cm gap, 12.9 cm deep, runs along it, and past

@@ -1,4 +1,4 @@
-// The simulated camera on the raw path (issue #20): the raw renderer's
+// The simulated camera on the raw path: the raw renderer's
 // phase frames through the robot's ToF processing, on the calibration file
 // the simulated unit wrote. On a flat wall its points match the depth
 // renderer's within their noise; the tamper still reaches the frames; and

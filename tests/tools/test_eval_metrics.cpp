@@ -1,5 +1,5 @@
 // hreval's statistics (tools/src/eval_metrics.cpp): the nearest-rank
-// percentile that issue #17's 95th-percentile figure is read with, and the
+// percentile that the 95th-percentile target is read with, and the
 // median beside it; which handrail a detection is scored against when
 // several are in view.
 #include <cmath>

@@ -4,7 +4,7 @@
 // (it hung), a 141-byte header claiming 8192 x 8192 points (1.3 GB), a
 // folder named x.pcd, an empty folder and an unwritable stdout or
 // --debug-png folder (exit 0 before; a --debug-png path that is a file is
-// refused up front since session 19).
+// refused up front).
 //   argv[1]: the hrdetect program
 #include <fcntl.h>
 #include <sys/stat.h>

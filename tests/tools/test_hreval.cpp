@@ -1,4 +1,4 @@
-// hreval's report of failures (issue #17: which frames fail, why, and a
+// hreval's report of failures (which frames fail, why, and a
 // debug picture of each scenario's worst one), and a scenario file that
 // cannot be read reported while the others still run.
 //   argv[1]: the hreval program
@@ -129,16 +129,16 @@ void test_a_scenario_without_failures_has_no_worst_frame(void**) {
   }
   assert_int_not_equal(access((out + "/worst/table2-iss.png").c_str(), F_OK), 0);
   assert_int_not_equal(access((out + "/worst/table2-iss.lines.json").c_str(), F_OK), 0);
-  // A flat wall alone: no issue #17 table.
+  // A flat wall alone: no targets table.
   assert_int_not_equal(access((out + "/targets.json").c_str(), F_OK), 0);
 }
 
-// Issue #17's numbers: the rack-wall scenarios pooled, the flat wall's
+// The targets table: the rack-wall scenarios pooled, the flat wall's
 // left out, the frames without a handrail counted from the one scenario
 // that has them, and the same figures in targets.json. The counts checked
 // come from the ground truth alone (3 frames each: the 1.04 m rail in
 // reach in every frame, the rack corner with no handrail in any).
-void test_the_issue_17_table_pools_the_rack_walls(void**) {
+void test_the_targets_table_pools_the_rack_walls(void**) {
   const std::string out = g_dir + "/targets";
   const Result r =
       run({"--out", out, "--max-frames", "3",
@@ -147,12 +147,12 @@ void test_the_issue_17_table_pools_the_rack_walls(void**) {
            write_unfindable_scenario()});
   assert_int_equal(r.exit_status, 0);
   const std::string report = testing_support::read_text(out + "/report.md");
-  const std::size_t at = report.find("## Issue #17's numbers");
+  const std::size_t at = report.find("## Figures against the targets");
   if (at == std::string::npos ||
       report.find("| figure | rack wall | pooled | target | pooled meets it |", at) ==
           std::string::npos ||
       report.find("| frames without a handrail: a false detection | ", at) == std::string::npos) {
-    fail_msg("no issue #17 table with a rack-wall and a pooled column:\n%s", report.c_str());
+    fail_msg("no targets table with a rack-wall and a pooled column:\n%s", report.c_str());
   }
   const std::string json = testing_support::read_text(out + "/targets.json");
   const std::string rack = column_object(json, "rack wall");
@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_the_worst_frame_is_named_with_its_reason_and_drawn),
       cmocka_unit_test(test_a_bad_frame_count_is_refused),
       cmocka_unit_test(test_a_scenario_without_failures_has_no_worst_frame),
-      cmocka_unit_test(test_the_issue_17_table_pools_the_rack_walls),
+      cmocka_unit_test(test_the_targets_table_pools_the_rack_walls),
       cmocka_unit_test(test_an_unreadable_scenario_is_reported_and_the_rest_still_run),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -1,5 +1,5 @@
 // hrlocalize on a real recorded perch: the localizer's inputs of a HIL run
-// on approach-iss-mesh (seed 6, recorded in session 39 by tools/perch-runs;
+// on approach-iss-mesh (seed 6, recorded by tools/perch-runs;
 // the log cut to IMU_SAMPLE, GP_POSE, HANDRAIL_ESTIMATE and TRUTH_POSE).
 // On that run the filter ran 0.5 m along the bar and the perch faulted
 // HANDRAIL_LOST: its OE estimates were placed with the configured 0.55 m,

@@ -118,9 +118,9 @@ double thread_cpu_us() {
 // differ: the mean is pulled up by the heavy ones), in wall time and in the
 // thread's CPU time.
 // bay_budget: mounts searched in a view of an empty bay, 0 for the
-// configuration's (5); 3 was the budget before session 34, beside it.
+// configuration's (5); 3, the earlier budget, beside it.
 // faces_wall: the cross test's probes take the faces in view as wall (the
-// default since session 35); off beside it.
+// the default); off beside it.
 void BM_ScenarioProposed(benchmark::State& state, const char* name, bool round,
                          std::uint32_t bay_budget = 0, bool faces_wall = true) {
   const ScenarioFrames& frames = scenario_frames(name, round);
@@ -197,7 +197,7 @@ void BM_Stage(benchmark::State& state, int stage) {
         break;
       case 7: {
         // The same without the faces' normal (plane_faces_normal off, the
-        // default until session 30): what that step costs.
+        // the earlier default): what that step costs.
         static const estimator::DetectorConfig broad_cfg = [] {
           estimator::DetectorConfig c = s->f.cfg;
           c.plane_faces_normal = false;
@@ -243,7 +243,7 @@ BENCHMARK_CAPTURE(BM_ScenarioProposed, table2_round, "table2-round.json", true)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, clutter_only, "clutter-only.json", false)
     ->Unit(benchmark::kMillisecond);
-// Issue #17: the station's rack walls (every 10th frame of each scenario).
+// The station's rack walls (every 10th frame of each scenario).
 BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_21_5, "rack-table2-iss-mesh-21-5.json", false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_0_76, "rack-table2-iss-0-76.json", false)

@@ -40,7 +40,7 @@ BENCHMARK_CAPTURE(BM_RenderFrame, table2_iss_mesh, "table2-iss-mesh.json")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame, sweep, "sweep.json")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame, clutter_only, "clutter-only.json")->Unit(benchmark::kMillisecond);
-// Issue #17: a rack wall, rack clutter, and the Columbus module's mesh.
+// A rack wall, rack clutter, and the Columbus module's mesh.
 BENCHMARK_CAPTURE(BM_RenderFrame, rack_table2_21_5, "rack-table2-iss-mesh-21-5.json")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame, rack_clutter_vertical_30, "rack-clutter-vertical-30.json")

@@ -4,7 +4,7 @@
 // into the driver's 64 KB transfers, and the time from a frame's last
 // transfer to the frame being ready for the listener.
 //
-// Targets (#21): streaming plus reassembly <= 5 % of a core at 45 fps
+// Targets: streaming plus reassembly <= 5 % of a core at 45 fps
 // (that is <= 1.1 ms a frame); last transfer to listener, median <= 2 ms.
 #include <benchmark/benchmark.h>
 

@@ -24,7 +24,7 @@ struct FrameErrors {
 // the one whose image angle is nearest the gripper angle. -1 if none.
 int target_handrail(const sim_hal::FrameTruth& truth, double gripper_angle_rad);
 
-// Issue #17's definition of a frame with a target: a handrail at least 35 %
+// The definition of a frame with a target: a handrail at least 35 %
 // visible whose visible part's middle is 0.25 to 1.5 m from the camera
 // (nearer, the detector's wall fills the view; farther, the bar is a few
 // pixels); among several, the one nearest the gripper angle. -1 if none.
@@ -84,12 +84,12 @@ struct Tally {
   int false_found = 0;    // ... and it was not (or there was none)
   int state_checked = 0;
   int state_right = 0;
-  // The same detection rate over issue #17's frames with a target
+  // The same detection rate over the frames with a target
   // (target_handrail_in_reach).
   int reach_target_frames = 0;
   int reach_correct = 0;
   Stats x, y, z, perpendicular, roll, pitch, yaw, axis, normal, beam, time_ms;
-  // The two errors issue #17 names, over the correct detections alone (the
+  // The two pose errors the targets name, over the correct detections alone (the
   // ones above count every detection of a frame with a target, as the
   // paper's Figure 15 does).
   Stats correct_perpendicular, correct_axis;

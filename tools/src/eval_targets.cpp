@@ -131,7 +131,7 @@ std::vector<TargetColumn> target_columns(
 std::string targets_section(const std::vector<TargetColumn>& columns,
                             const SurfaceLengthTallies& by_surface_length) {
   std::ostringstream md;
-  md << "\n## Issue #17's numbers\n\nProposed method, the report's frame path, over the "
+  md << "\n## Figures against the targets\n\nProposed method, the report's frame path, over the "
         "rack-wall and Columbus scenarios run (the rack-wall controls apart), per surface and "
         "pooled; met or not judged on the pooled column. Frames without a handrail: those of "
         "the surface's frames with no target (any detection there is false). Errors: over the "

@@ -1,5 +1,5 @@
 #pragma once
-// Issue #17's numbers from hreval's tallies, against the issue's targets:
+// The detector's figures from hreval's tallies, against the project's targets:
 // the proposed method over the rack-wall and Columbus scenarios (the
 // rack-wall controls apart), per surface and pooled, so that a closing note
 // quotes one table instead of summing the per-scenario rows by hand.

@@ -160,7 +160,7 @@ void table2_rows(std::ostringstream& md, const ScenarioResult& r) {
   for (int m = 0; m < 2; ++m) row("**all**", kMethodNames[m], r.method[m].all);
 }
 
-// Issue #20: every scenario's proposed-method rates on the raw path beside
+// Every scenario's proposed-method rates on the raw path beside
 // the depth path's, and what the ToF processing made of the raw frames.
 void raw_beside_depth(std::ostringstream& md, const std::vector<ScenarioResult>& depth,
                       const std::vector<ScenarioResult>& raw) {
@@ -173,7 +173,7 @@ void raw_beside_depth(std::ostringstream& md, const std::vector<ScenarioResult>&
         "false raw | in reach depth | in reach raw | raw valid pixels | mostly invalid | ToF "
         "median ms |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  // Issue #20's target is two-sided (within 1 point either way); the
+  // The raw path's target is two-sided (within 1 point either way); the
   // count of scenarios not more than 1 point below is kept beside it.
   int within = 0, not_below = 0, scored = 0;
   double worst_below = 0.0, worst_above = 0.0;
@@ -411,7 +411,7 @@ int main(int argc, char** argv) {
         "(at least 30 % of a handrail in view). False: frames with a detection that is not the "
         "target, "
         "over all frames. State: BE / OE / NE right, over correct detections.\n\n"
-     << "In reach (issue #17's definition): frames where a handrail is at least 35 % visible with "
+     << "In reach: frames where a handrail is at least 35 % visible with "
         "the middle of its visible part 0.25 to 1.5 m away, and the detection rate over them.\n\n"
      << "| scenario | handrail | method | frames | with target | detected | false | state right | "
         "median ms | in reach | detected in reach |\n"
@@ -443,7 +443,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "hreval: %s\n", error.c_str());
     }
   }
-  // Issue #17: by surface and handrail length, the rack walls' Figure 15,
+  // By surface and handrail length, the rack walls' Figure 15,
   // the state confusion on the approaches, and why frames failed.
   md << "\n## By surface and handrail length\n\n"
      << "Every frame of every scenario run, grouped by what the handrails stand on and the "
@@ -464,7 +464,7 @@ int main(int argc, char** argv) {
       }
     }
   }
-  // Issue #17's frame time is over the frames of a kind of surface, not a
+  // The frame time is over the frames of a kind of surface, not a
   // scenario: every frame of the surface's scenarios pooled, proposed method.
   md << "\nFrame time, proposed method, every frame of a surface's scenarios pooled "
         "(wall clock in this process; estimator_bench measures it alone):\n\n"
@@ -484,7 +484,7 @@ int main(int argc, char** argv) {
                   ms[ms.size() / 2], ms[ms.size() * 9 / 10]);
     md << line;
   }
-  // Issue #17's figures against its targets, per surface and pooled.
+  // The figures against their targets, per surface and pooled.
   {
     std::vector<std::pair<std::string, const tools::Tally*>> scenarios;
     for (const ScenarioResult& r : results) scenarios.emplace_back(r.surface, &r.method[0].all);

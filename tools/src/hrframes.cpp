@@ -5,7 +5,7 @@
 // named by the camera's frame id, and the flight estimates beside them, so
 // that `hrdetect --frame-ids-from-names` can run the same detector on the
 // same frames with the same random stream and show every stage of a frame
-// the run got wrong (issue #19's HIL trigger was found this way).
+// the run got wrong (a HIL run's divergence was found this way).
 #include <lcm/lcm-cpp.hpp>
 
 #include <cerrno>

@@ -43,7 +43,7 @@ struct EmulatedCameraConfig {
   std::string serial = "0005-1234-0042";
   std::uint8_t firmware_major = 1;
   std::uint8_t firmware_minor = 4;
-  std::string calibration;  // the #20 calibration file's bytes
+  std::string calibration;  // the raw path's calibration file's bytes
   int use_case_index = 5;   // at power-up: MODE_5_45FPS_500
   std::uint32_t exposure_us = 500;
 };

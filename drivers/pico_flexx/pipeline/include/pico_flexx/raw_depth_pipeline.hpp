@@ -5,7 +5,7 @@
 // hal::DepthDataListener, on the caller's (the camera's) thread.
 //
 // Any raw-frame source feeds it the same way: the simulator's raw renderer
-// (sim_hal::SimulatedCamera on the raw path) and the USB driver (#21). It
+// (sim_hal::SimulatedCamera on the raw path) and the USB driver. It
 // also keeps what the run's summary reports: how long the processing took
 // (median over the last kTimingWindow frames) and how many frames it
 // dropped or found mostly invalid.
