@@ -79,7 +79,7 @@ void test_mode5_walls(void**) {
   assert_near(shift / valid, u, 0.003);
 }
 
-// A wall turned 70 deg about the vertical: across the image its ranges run
+// A wall turned 62 deg about the vertical: across the image its ranges run
 // from under 1 m to well past 4 m, through 1.874 m (80 MHz wraps) and
 // 2.498 m (60 MHz wraps). Up to 4 m no pixel may be unwrapped wrongly.
 void test_mode9_unwraps_across_ambiguity(void**) {

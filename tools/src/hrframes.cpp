@@ -36,7 +36,7 @@ void usage(FILE* out) {
                "Writes the depth frames of an LCM log (recorded with fsw_app --publish-frames\n"
                "--log LOG) as DIR/frame_NNNNN.pcd, NNNNN the camera's frame id, and what the\n"
                "run's estimator reported for each frame as DIR/estimates.jsonl (one JSON\n"
-               "object per %s message: frame_id, state, reason, bar_length_m, inliers,\n"
+               "object per %s message: frame_id, state, detect_status, bar_length_m, inliers,\n"
                "position and axis of the handrail in the camera frame). Run the same\n"
                "detector on the same frames, with the same random stream per frame, with\n"
                "  hrdetect --frame-ids-from-names [--handrail round] [--debug-png PICS] DIR\n\n"
