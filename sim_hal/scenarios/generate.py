@@ -157,7 +157,8 @@ def write(s):
         os.makedirs(DEV_DIR, exist_ok=True)
         path = os.path.join(DEV_DIR, s["name"] + ".json")
     else:
-        path = s["name"] + ".json"
+        # Beside this script, wherever it is run from.
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), s["name"] + ".json")
     with open(path, "w") as f:
         json.dump(s, f, indent=1)
         f.write("\n")

@@ -13,7 +13,7 @@
 //   dropouts  each capture lost with probability dropout_probability;
 //   latency   uniform in [latency_min_s, latency_max_s], delivered in
 //             capture order (a later capture never overtakes);
-//   jumps     jump_to() adds a step to the position (a relocalisation).
+//   jumps     jump_by() adds a step to the position (a relocalisation).
 // It reports the covariance it claims (sigma_m, sigma_rad per axis), not
 // its true error. The attitude error is applied as the filter models it:
 // q = Exp(n_theta) q_true (world frame). Seeded, pure logic, time passed in;

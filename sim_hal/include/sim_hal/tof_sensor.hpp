@@ -87,7 +87,7 @@ class DepthRenderer {
 
  private:
   void cast_rays(const Scene& scene, const Eigen::Isometry3d& T_world_cam);
-  // Per 16 x 16 pixel tile, the surfaces whose hull, seen through a pinhole,
+  // Per 8 x 8 pixel tile (kTile), the surfaces whose hull, seen through a pinhole,
   // overlaps the tile's rays.
   void cull_surfaces_per_tile(const Scene& scene, const Eigen::Isometry3d& T_world_cam);
   void add_flying_pixels(std::uint64_t stream_seed);
