@@ -157,7 +157,7 @@ void print_usage(std::FILE* out) {
                "                        with HRP_ROYALE_SDK_DIR, else the project's)\n"
                "  --tof-calibration FILE sim, raw path: where the simulated unit writes its\n"
                "                        calibration file, which the processing then reads\n"
-               "                        (default: a temporary file, removed at exit)\n"
+               "                        (default: a temporary file, removed once read)\n"
                "  --gp-error M,DEG      sim: the general-purpose localizer's bias, metres and\n"
                "                        degrees (default 0.03,1); its direction turns slowly\n"
                "  --handrail iss|round  the handrail kind to look for (default from the config)\n"
