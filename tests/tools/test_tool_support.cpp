@@ -241,7 +241,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_config_file), cmocka_unit_test(test_detection_json),
       cmocka_unit_test(test_mounts_json), cmocka_unit_test(test_image_text_and_png),
-      cmocka_unit_test(test_output_dir), cmocka_unit_test(test_whole_numbers),
+      cmocka_unit_test(test_output_dir),  cmocka_unit_test(test_whole_numbers),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

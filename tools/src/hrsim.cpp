@@ -98,8 +98,9 @@ int main(int argc, char** argv) {
       long long n = 0;
       std::string why;
       const bool frames = a == "--max-frames";
-      if (!tools::parse_whole_number(next(a.c_str()), frames ? 1 : 0, frames ? 1000000 : static_cast<long long>(INT64_MAX),
-                                     &n, &why)) {
+      if (!tools::parse_whole_number(next(a.c_str()), frames ? 1 : 0,
+                                     frames ? 1000000 : static_cast<long long>(INT64_MAX), &n,
+                                     &why)) {
         std::fprintf(stderr, "hrsim: %s %s\n", a.c_str(), why.c_str());
         return 2;
       }
