@@ -106,6 +106,7 @@ bool check_message(const hrp::gp_pose_t& m, InputReject* why) {
   Verdict v(why);
   v.count_within(m.utime, 0, INT64_MAX);
   v.count_within(m.capture_utime, 0, INT64_MAX);
+  v.count_within(m.seq, 0, INT64_MAX);
   v.pose(m.T_world_body, kMaxWorldPosition_m);
   for (const auto& row : m.covariance) v.finite(row, 6);
   return v.ok();

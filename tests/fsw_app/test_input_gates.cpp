@@ -136,6 +136,19 @@ void test_counter_jumps_are_bounded_and_a_restart_is_followed(void**) {
   assert_int_equal(drain(&q), 1);
 }
 
+// Counters at the top of their range (a fuzzer's find: a run of refused
+// samples ending at INT64_MAX overflowed the restart test).
+void test_counters_at_the_end_of_their_range(void**) {
+  ImuQueue q;
+  deliver(&q, imu(5, kNow_us), kNow_us);
+  deliver(&q, imu(INT64_MAX, kNow_us), kNow_us);
+  deliver(&q, imu(INT64_MAX, kNow_us), kNow_us);
+  deliver(&q, imu(0, kNow_us), kNow_us);
+  assert_int_equal(rejected(q.input_counts(), InputReject::kSequence), 3);
+  deliver(&q, imu(6, kNow_us), kNow_us);
+  assert_int_equal(q.input_counts().accepted.load(), 2);
+}
+
 // Valid-looking samples far above the bound: the excess is refused and
 // counted; at the IMU's own rate nothing is.
 void test_rate_bound(void**) {
@@ -206,6 +219,7 @@ int main() {
       cmocka_unit_test(test_pose_dated_ahead_cannot_make_the_real_ones_stale),
       cmocka_unit_test(test_imu_copies_are_refused_by_their_counter),
       cmocka_unit_test(test_counter_jumps_are_bounded_and_a_restart_is_followed),
+      cmocka_unit_test(test_counters_at_the_end_of_their_range),
       cmocka_unit_test(test_rate_bound),
       cmocka_unit_test(test_refused_messages_take_no_token),
       cmocka_unit_test(test_replay_judges_counters_only),

@@ -149,7 +149,9 @@ class SequenceGate {
     }
     // A restarted sender counts up from somewhere else: follow it once a
     // run of its samples counts up by one each.
-    run_ = (run_ > 0 && seq == run_last_ + 1) ? run_ + 1 : 1;
+    // (run_last_ < seq first: run_last_ + 1 cannot overflow then; the
+    // fuzzer found INT64_MAX here.)
+    run_ = (run_ > 0 && run_last_ < seq && seq - run_last_ == 1) ? run_ + 1 : 1;
     run_last_ = seq;
     if (run_ >= kSequenceResyncRun && seq >= 0) {
       last_ = seq;
