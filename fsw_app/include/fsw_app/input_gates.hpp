@@ -13,9 +13,10 @@
 //     samples count up by one each: copies never do.
 //   - rate: more accepted messages than the channel's bound, counted over
 //     a token bucket on the receiver's clock, are refused (kRateLimited).
-//     The bounds are twice the fastest rate a sender can be configured to:
-//     only a stream nobody on the robot sends trips them. Refused
-//     messages take no token, so junk cannot starve the real stream.
+//     The bounds are at least twice the fastest rate a sender can be
+//     configured to: only a stream nobody on the robot sends trips them.
+//     Refused messages take no token, so junk cannot starve the real
+//     stream.
 // A receiver built without a clock (a replay of a recorded run, whose
 // times are the past's) judges sequence only.
 #include <cstdint>
