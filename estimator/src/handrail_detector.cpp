@@ -200,7 +200,7 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // may cross a bar at an angle and collect the patch under it. That
   // patch's front face runs along the bar, not the line, and the end walk
   // would find the bar's sides as two ends a few centimetres apart: the
-  // 0.55 m rail passed as an 8.5 in handrail (issue #19's HIL run). The bar
+  // 0.55 m rail passed as an 8.5 in handrail (in a HIL run). The bar
   // itself is its own family's line.
   if (!line_follows_front(refined->direction, *line, cfg_)) return LineVerdict::kCrossesBar;
   if (!seat_on_mount(cloud, inliers, line)) return LineVerdict::kWrongHeight;
@@ -219,7 +219,7 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // On the plane's own face among rack faces, the plane may be a face flush
   // with the track's top: the track shows as a step on one side only. A bar
   // with its mount's level running on at both sides lies over an open face
-  // (session 33).
+  // (a cable lying over a face shows it on both sides).
   if (cfg_.track_beside && !off_plane && rack_faces_ && open_face_both_sides(beside, cfg_)) {
     return LineVerdict::kNotOnTrack;
   }
@@ -240,14 +240,14 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // Seen or not: an end the image's edge, an occluder or dropouts cut off
   // still shows whatever of it lies in view. A handrail's front holds to
   // its leg up to the cut; a cable coming down a ramp there has left the
-  // front's height before it (session 25).
+  // front's height before it.
   for (int e = 0; e < 2; ++e) {
     const Eigen::Vector3f end_point = line->point + end_t[e] * line->axis;
     if (drop_m[e] > allowed_end_drop_m(cfg_, scale_, end_point.z())) return LineVerdict::kRampEnd;
   }
   // Seated on a track the bar hides, past a seen end that track must
   // stand proud of the face beside it; a cable over a face, read as a bar
-  // on a hidden track, has the face running on there (session 33).
+  // on a hidden track, has the face running on there.
   // The hidden track's top (the bar's mount) in the heights the measure
   // takes, from the search's wall.
   const float track_top_m = line->mount_offset_m - search_mount_m_;

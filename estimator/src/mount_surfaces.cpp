@@ -190,7 +190,7 @@ void add_front_peak_mounts(const Histogram& h, const DetectorConfig& cfg, float 
     // the development set), so none is added. What this gives up: a bar
     // whose own front is big enough to make a surface peak, standing on a
     // face too small to make one; neither the development nor the scored
-    // set showed one (session 31). Demoting the surface mounts whose
+    // set showed one. Demoting the surface mounts whose
     // fronts fall on a face, the same way, lost such bars by the dozen
     // (dev-rack-table2-iss-0-53 100 -> 87 %): close up, the bar's front is
     // a surface peak and its own mount looks like a face's echo.
@@ -256,7 +256,7 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
   // What ranks the mounts. In a bay view seen obliquely the faces in front
   // of the back make a ramp of heights: a mount whose window lies on it
   // collects the ramp's pixels, and five of them outranked a rail's own
-  // face, whose window holds the bar's front and little else (session 37).
+  // face, whose window holds the bar's front and little else.
   // There the window's pixels count less those in as wide a window just
   // above it, where nothing of a bar on that mount lies: a ramp gives as
   // many there, a bar's front none. Off a bay the plain count ranks: the
@@ -280,7 +280,7 @@ MountHypotheses find_mount_hypotheses(const OrganizedCloud& cloud, const Detecto
     // The bar on the surface itself, or on a seat track standing on it. A
     // mount this near the plane is the plane, which has a search of its
     // own: in the list it took a slot and was never searched, so a view
-    // offered one mount fewer than configured (session 36).
+    // offered one mount fewer than configured.
     for (const float mount : {peak_m[p], peak_m[p] + cfg.mount_step_m}) {
       if (std::fabs(mount) < kSameMountM) continue;
       const std::uint32_t n = front_pixels(mount);

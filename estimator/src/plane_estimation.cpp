@@ -280,7 +280,7 @@ bool place_on_main_surface(const float* x, const float* y, const float* z, std::
 // runner-up's; returns how many.
 constexpr int kCellPx = 28;
 // Every fourth pixel each way (49 per cell): with the step on by default
-// (session 30) every other pixel cost 50 us a frame more, and the pooled
+// every other pixel cost 50 us a frame more, and the pooled
 // cells' normal, the faces' refit after it, gives the same answers on the
 // development set (frames in reach 4,428 -> 4,431 of 4,496).
 constexpr int kCellStridePx = 4;
@@ -524,7 +524,7 @@ PlaneEstimate estimate_plane(const OrganizedCloud& cloud, const DetectorConfig& 
       cfg.plane_faces_normal ? pooled_cells_normals(cloud, cfg, best, cell_normals) : 0;
   if (cell_clusters > 0) {
     // The runner-up is the wall's when it piles more than twice as many
-    // of the view's points onto one surface as the mode (session 38: on
+    // of the view's points onto one surface as the mode (on
     // the first development set's dev-rack-table2-iss-mesh-30, frame 231,
     // the mode lay 12.6 deg off the wall, holding 31 points on its main
     // surface against the wall's 130, and every line was searched along

@@ -72,10 +72,9 @@ struct DetectorConfig {
   // (median) between faces a centimetre apart, up to 5 to 13 deg; this
   // takes the development set's median under 0.4 deg. Applied only where
   // faces a centimetre or more apart show (a flat wall keeps its broad
-  // fit). Off until session 30: with the wall right, more handrail-like
-  // cables pass the height test (development set: 56 -> 81 false frames
-  // without a handrail, session 23), which the seat-track test below
-  // (track_beside) now refuses (sim_hal/README.md, "Session 30").
+  // fit). With the wall right, more handrail-like cables pass the height
+  // test (development set: 56 -> 81 false frames without a handrail),
+  // which the seat-track test below (track_beside) refuses.
   bool plane_faces_normal = true;
 
   // Mount surfaces. The surface a handrail stands on need not be the
@@ -103,7 +102,7 @@ struct DetectorConfig {
   // faces in front of the back each offer a mount and a track on it, and a
   // face standing a bar front's height over another face gives that one's
   // mount the most front pixels: the ranking is no guide there, so more of
-  // them are searched (session 34). At least max_mount_hypotheses.
+  // them are searched. At least max_mount_hypotheses.
   std::uint32_t max_mount_hypotheses_bay = 5;
   // Mounts read off the bar's front instead (mount_surfaces.hpp): the
   // strongest peaks of the histogram where a bar's front face could stand
@@ -133,7 +132,7 @@ struct DetectorConfig {
   // With plane_faces_normal (on its own it refuses real rails on close
   // approaches, where the broad plane tilts across faces and the levels
   // beside the bar come out wrong): development set's false frames without
-  // a handrail 52 -> 18 of 268 (session 30). Since session 33 a side
+  // a handrail 52 -> 18 of 268. A side
   // showing the track's foot lets a bar pass whose other side shows the
   // mount's level (a neighbouring face flush with the track's top). It also
   // refuses a bar seated on the dominant plane's own face where the view
@@ -158,7 +157,7 @@ struct DetectorConfig {
   float wall_tolerance_m = 0.02f;  // d_g,min: "on the wall" (or anywhere below it)
   // ... and on a surface in view (a face of the frame's height histogram)
   // standing between that and the gap window over the search's mount: the
-  // face beside a seat track on a rack (session 35, gap_distance_shifted).
+  // face beside a seat track on a rack (gap_distance_shifted).
   bool cross_faces_wall = true;
 
   // Side width test (eq. 4) on the raised span through the pixel.
@@ -184,7 +183,7 @@ struct DetectorConfig {
   float min_visible_length_m = 0.08f;   // shorter segments are clutter
   // Where the image's edge cuts a bar, down to this fraction of the
   // shortest known handrail instead: a bar 35 % in view is one the robot
-  // must find (issue #17), and 35 % of the station's 0.20 m bar is 7 cm
+  // must find, and 35 % of the station's 0.20 m bar is 7 cm
   // (shortest_partial_bar_m, verify_candidate).
   float min_visible_fraction = 0.35f;
   float front_height_tolerance_m = 0.004f;  // bar front face vs geometry

@@ -33,7 +33,7 @@ std::uint32_t gap_distance_test(const OrganizedCloud& cloud, const DetectorConfi
 // (within 5 mm plus its noise) standing above the wall tolerance but below
 // the gap window over this mount is wall to the cross test's probes too:
 // beside a seat track on a rack the probe lands on a neighbouring face 2
-// to 3.5 cm over the track's face as often as on that face (session 35).
+// to 3.5 cm over the track's face as often as on that face.
 // Only faces, not any height below the window: taking every pixel below
 // the window as wall (eq. 3's d_g,min read as the window's lower edge) let
 // cables beside boxes through, three times the false detections of this.

@@ -54,7 +54,7 @@ bool mount_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
 // on beside it at the mount's level. A neighbouring face may lie flush
 // with the track's top (faces differ by 1 to 5 cm, a track stands 1.3 cm
 // proud) and run on at the mount's level on that side; the track's own
-// face then shows on the other (session 33).
+// face then shows on the other.
 bool track_shows_beside(const MountBeside& m, const DetectorConfig& cfg);
 
 // Whether the band reads as one unbroken face under the bar: both sides

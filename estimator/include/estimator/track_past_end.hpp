@@ -68,7 +68,7 @@ TrackPastEnd measure_track_past_end(const OrganizedCloud& cloud, const PixelScal
 // whose strip stands at least gap_min_m(cfg) (the bar's back) over
 // `track_top_m`, the hidden track's top (the bar's mount, in the strip's
 // heights): something at the bar's own height stands over where the track
-// would run (a box or a cable across the end; session 34), and a box's top
+// would run (a box or a cable across the end), and a box's top
 // is level across.
 bool track_runs_past_end(const TrackPastEnd& m, const bool end_seen[2], float track_top_m,
                          const DetectorConfig& cfg);
