@@ -23,6 +23,37 @@
 
 namespace fsw_app {
 
+// The gates a decoded, checked message passes on its way into a receiver
+// (input_gates.hpp): the time against the receiver's clock, then the
+// sender's counter and the channel's rate. Each refusal is counted.
+// Dispatcher thread only.
+template <typename Msg>
+class InputGates {
+ public:
+  bool dated_ok(const Msg& m, std::int64_t now_us, InputCounts* counts) const {
+    if (!dated_ahead(newest_time_us(m), now_us)) return true;
+    counts->count_rejected(InputReject::kFuture);
+    return false;
+  }
+  // After every other test: a message refused here has taken no token.
+  bool counter_and_rate_ok(const Msg& m, std::int64_t now_us, InputCounts* counts) {
+    std::int64_t seq = 0;
+    if (sequence_of(m, &seq) && !sequence_.admit(seq)) {
+      counts->count_rejected(InputReject::kSequence);
+      return false;
+    }
+    if (!rate_.admit(now_us)) {
+      counts->count_rejected(InputReject::kRateLimited);
+      return false;
+    }
+    return true;
+  }
+
+ private:
+  SequenceGate sequence_;
+  RateGate rate_{rate_bound(static_cast<const Msg*>(nullptr))};
+};
+
 // The newest message on a channel, with a count so a reader can tell a new
 // one from the one it already has. Each message is decoded into a copy
 // aside and checked (input_checks.hpp, input_gates.hpp): only a whole,
@@ -52,24 +83,13 @@ class Mailbox {
       counts_.count_rejected(why);
       return;
     }
-    if (dated_ahead(newest_time_us(incoming_), now_us)) {
-      counts_.count_rejected(InputReject::kFuture);
-      return;
-    }
+    if (!gates_.dated_ok(incoming_, now_us, &counts_)) return;
     std::lock_guard<std::mutex> lock(mutex_);
     if (sequence_ != 0 && !is_fresh(incoming_.utime, msg_.utime)) {
       counts_.count_rejected(InputReject::kStale);
       return;
     }
-    std::int64_t seq = 0;
-    if (sequence_of(incoming_, &seq) && !sequence_gate_.admit(seq)) {
-      counts_.count_rejected(InputReject::kSequence);
-      return;
-    }
-    if (!rate_gate_.admit(now_us)) {
-      counts_.count_rejected(InputReject::kRateLimited);
-      return;
-    }
+    if (!gates_.counter_and_rate_ok(incoming_, now_us, &counts_)) return;
     // A swap, not a copy: string fields keep their buffers, no allocation.
     std::swap(msg_, incoming_);
     ++sequence_;
@@ -81,8 +101,7 @@ class Mailbox {
   Msg msg_{};
   Msg incoming_{};
   std::uint64_t sequence_ = 0;
-  SequenceGate sequence_gate_;
-  RateGate rate_gate_{rate_bound(static_cast<const Msg*>(nullptr))};
+  InputGates<Msg> gates_;
   InputCounts counts_;
 };
 
@@ -119,17 +138,8 @@ class MessageQueue {
       counts_.count_rejected(why);
       return;
     }
-    if (dated_ahead(newest_time_us(incoming_), now_us)) {
-      counts_.count_rejected(InputReject::kFuture);
-      return;
-    }
-    std::int64_t seq = 0;
-    if (sequence_of(incoming_, &seq) && !sequence_gate_.admit(seq)) {
-      counts_.count_rejected(InputReject::kSequence);
-      return;
-    }
-    if (!rate_gate_.admit(now_us)) {
-      counts_.count_rejected(InputReject::kRateLimited);
+    if (!gates_.dated_ok(incoming_, now_us, &counts_) ||
+        !gates_.counter_and_rate_ok(incoming_, now_us, &counts_)) {
       return;
     }
     std::lock_guard<std::mutex> lock(mutex_);
@@ -147,8 +157,7 @@ class MessageQueue {
   std::mutex mutex_;
   Msg slots_[Capacity]{};
   Msg incoming_{};
-  SequenceGate sequence_gate_;
-  RateGate rate_gate_{rate_bound(static_cast<const Msg*>(nullptr))};
+  InputGates<Msg> gates_;
   std::size_t head_ = 0, count_ = 0;
   std::atomic<std::uint64_t> overflows_{0};
   InputCounts counts_;
