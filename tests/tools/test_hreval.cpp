@@ -168,6 +168,52 @@ void test_the_targets_table_pools_the_rack_walls(void**) {
   }
 }
 
+// The held-out module's object in lomo.json ("{...}" up to its figures'
+// end), empty if none.
+std::string held_out_object(const std::string& json, const std::string& module) {
+  const std::size_t at = json.find("\"" + module + "\": {\"chosen\"");
+  if (at == std::string::npos) return "";
+  return json.substr(at, json.find("}}", at) + 2 - at);
+}
+
+// Each module held out: the candidate is chosen on the other module
+// alone. A configuration that finds nothing (every line needs more inliers
+// than a frame has pixels) loses to the one that finds the handrails,
+// whichever of them is the base configuration.
+void test_leave_one_module_out_chooses_on_the_other_modules(void**) {
+  const std::string blind = g_dir + "/blind.json", plain = g_dir + "/plain.json";
+  std::ofstream(blind) << R"({"min_line_inliers": 100000})";
+  std::ofstream(plain) << "{}";
+  const std::vector<std::string> scenarios = {
+      testing_support::source_path("sim_hal/scenarios/table2-iss.json"),
+      testing_support::source_path("sim_hal/scenarios/rack-table2-iss-0-53.json")};
+  struct Case {
+    std::vector<std::string> options;
+    std::string winner;
+  } cases[] = {{{"--candidate", blind}, "default"},
+               {{"--config", blind, "--candidate", plain}, plain}};
+  for (const Case& c : cases) {
+    std::vector<std::string> args = {"--out", g_dir + "/lomo", "--max-frames", "3"};
+    args.insert(args.end(), c.options.begin(), c.options.end());
+    args.insert(args.end(), scenarios.begin(), scenarios.end());
+    const Result r = run(args);
+    assert_int_equal(r.exit_status, 0);
+    const std::string json = testing_support::read_text(g_dir + "/lomo/lomo.json");
+    for (const char* module : {"flat wall", "rack wall"}) {
+      const std::string held = held_out_object(json, module);
+      if (held.find("\"chosen\": \"" + c.winner + "\"") == std::string::npos ||
+          held.find("\"in_reach_found\": 3, \"in_reach_frames\": 3") == std::string::npos) {
+        fail_msg("%s held out: expected %s chosen, finding all 3 in reach: %s", module,
+                 c.winner.c_str(), json.c_str());
+      }
+    }
+    const std::string report = testing_support::read_text(g_dir + "/lomo/report.md");
+    if (report.find("| flat wall | `" + c.winner + "` | 100.0 |") == std::string::npos) {
+      fail_msg("no held-out row for the flat wall:\n%s", report.c_str());
+    }
+  }
+}
+
 void test_an_unreadable_scenario_is_reported_and_the_rest_still_run(void**) {
   const std::string out = g_dir + "/partly";
   const std::string missing = g_dir + "/no-such-scenario.json";
@@ -196,6 +242,7 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_a_bad_frame_count_is_refused),
       cmocka_unit_test(test_a_scenario_without_failures_has_no_worst_frame),
       cmocka_unit_test(test_the_targets_table_pools_the_rack_walls),
+      cmocka_unit_test(test_leave_one_module_out_chooses_on_the_other_modules),
       cmocka_unit_test(test_an_unreadable_scenario_is_reported_and_the_rest_still_run),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -1,7 +1,7 @@
 #pragma once
 // The detector's figures from hreval's tallies, against the project's targets:
-// the proposed method over the rack-wall and Columbus scenarios (the
-// rack-wall controls apart), per surface and pooled, so that a closing note
+// the proposed method over the module scenarios (the procedural rack walls
+// one of them, their controls apart), per module and pooled, so that a note
 // quotes one table instead of summing the per-scenario rows by hand.
 #include <map>
 #include <string>
@@ -14,7 +14,7 @@ namespace tools {
 
 // One column of the table: a surface kind, or the pool of several.
 struct TargetColumn {
-  std::string name;  // "rack wall", "Columbus", "pooled"
+  std::string name;  // "rack wall", "Columbus", "Node 1", ..., "pooled"
   Tally all_frames;  // every frame of its scenarios (merged scenario tallies)
   Tally no_target;   // those of its frames without a target
 };
@@ -35,9 +35,9 @@ TargetFigures target_figures(const TargetColumn& column);
 // (surface, target length or "no target") to the proposed method's tally.
 using SurfaceLengthTallies = std::map<std::pair<std::string, std::string>, Tally>;
 
-// The columns from each scenario's surface and proposed-method tally: the
-// rack walls and Columbus where any ran (the controls, "rack wall
-// (control)", apart), then their pool; empty if neither ran.
+// The columns from each scenario's module and proposed-method tally: every
+// module that ran but the flat walls and the rack-wall controls, then
+// their pool; empty if none ran.
 std::vector<TargetColumn> target_columns(
     const std::vector<std::pair<std::string, const Tally*>>& scenarios,
     const SurfaceLengthTallies& by_surface_length);
@@ -49,7 +49,16 @@ std::string targets_section(const std::vector<TargetColumn>& columns,
 
 // The Markdown table (a row per figure, a column per TargetColumn, then
 // the target and whether the last column meets it).
-std::string targets_markdown(const std::vector<TargetColumn>& columns);
+// With judge_last_only false, the last column says whether every column
+// meets the target and names those that do not.
+std::string targets_markdown(const std::vector<TargetColumn>& columns, bool judge_last_only = true);
+
+// One column's figures as a JSON object.
+std::string target_figures_json(const TargetFigures& f);
+
+// Whether a module's figures are held to the targets: every module but the
+// rack-wall controls (one depth; they check the simulator).
+bool is_judged_module(const std::string& module);
 
 // The same as one JSON object: {"columns": {NAME: {figures}}, "targets":
 // {...}, "met": {...}} (met: judged on the last column).

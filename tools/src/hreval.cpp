@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "estimator/handrail_detector.hpp"
 #include "eval_chart.hpp"
 #include "eval_metrics.hpp"
+#include "eval_modules.hpp"
 #include "eval_report_tables.hpp"
 #include "eval_targets.hpp"
 #include "output_dir.hpp"
@@ -65,18 +67,21 @@ void usage(FILE* out) {
                "  --config FILE     detector configuration (JSON, as hrdetect --config): an\n"
                "                    option to try against the defaults; each scenario still\n"
                "                    sets the handrail geometry and the gripper angle\n"
+               "  --candidate FILE  another detector configuration (JSON) to choose among, with\n"
+               "                    the default (or --config) as the first: the report's\n"
+               "                    leave-one-module-out section holds each module out in turn,\n"
+               "                    chooses the candidate that scores best on the others and\n"
+               "                    gives its figures on the held-out module (repeatable)\n"
                "  -h, --help        this text\n",
                HRP_SCENARIO_DIR);
 }
 
-// What the handrails stand on: a module mesh, rack walls, or plain walls.
-std::string surface_kind(const sim_hal::Scene& scene) {
-  if (!scene.meshes.empty()) {
-    for (const sim_hal::SceneMesh& m : scene.meshes)
-      if (m.path.find("columbus") != std::string::npos) return "Columbus";
-    return "module mesh";
-  }
-  return scene.rack_walls.empty() ? "flat wall" : "rack wall";
+// The modules in the report's order (any other after them).
+const std::vector<std::string>& module_order() {
+  static const std::vector<std::string> order = {"flat wall", "rack wall", "rack wall (control)",
+                                                 "Columbus",  "Node 1",    "Node 2",
+                                                 "Node 3",    "Cupola",    "module mesh"};
+  return order;
 }
 
 // The target's bar length as a row label (frames without a target apart).
@@ -116,7 +121,7 @@ int main(int argc, char** argv) {
   bool true_length = false;
   long long seed_offset = 0;
   std::vector<std::string> paths = {"depth"};
-  std::vector<std::string> files;
+  std::vector<std::string> files, candidate_paths;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&](const char* what) -> std::string {
@@ -153,6 +158,8 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--config") {
       config_path = next("--config");
+    } else if (a == "--candidate") {
+      candidate_paths.push_back(next("--candidate"));
     } else if (a == "--camera") {
       const std::string v = next("--camera");
       if (v != "depth" && v != "raw" && v != "both") {
@@ -175,6 +182,21 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // The configurations the leave-one-module-out run chooses among: the
+  // base first, then each --candidate, named by file.
+  std::vector<estimator::DetectorConfig> candidates = {base_cfg};
+  std::vector<std::string> candidate_names = {config_path.empty() ? "default" : config_path};
+  for (const std::string& path : candidate_paths) {
+    estimator::DetectorConfig c;
+    std::string config_error;
+    if (!estimator::load_detector_config(path, &c, &config_error)) {
+      std::fprintf(stderr, "hreval: --candidate: %s\n", config_error.c_str());
+      return 2;
+    }
+    candidates.push_back(c);
+    candidate_names.push_back(path);
+  }
+  std::vector<tools::ModuleColumns> by_candidate_module(candidates.size());
   if (files.empty()) files = list_scenarios(scenario_dir);
   if (files.empty()) {
     std::fprintf(stderr, "hreval: no scenario files in %s (give --scenarios DIR or files)\n",
@@ -209,7 +231,7 @@ int main(int argc, char** argv) {
     const bool round = !sc.scene.handrails.empty() &&
                        sc.scene.handrails[0].kind == sim_hal::HandrailKind::kPaperRound;
     r.kind = round ? "round" : "iss";
-    r.surface = surface_kind(sc.scene);
+    r.surface = tools::module_of(sc.scene);
     // The rack-wall controls (one depth, to check the simulator scores a
     // flat rack like a flat wall) stay out of the rack walls' figures.
     if (r.surface == "rack wall" && r.name.find("control") != std::string::npos)
@@ -219,12 +241,23 @@ int main(int argc, char** argv) {
     const float length_m = true_length && !sc.scene.handrails.empty()
                                ? static_cast<float>(sc.scene.handrails[0].bar_length_m)
                                : 0.55f;
-    estimator::DetectorConfig cfg = base_cfg;
-    cfg.handrail =
-        round ? estimator::paper_round_handrail(length_m) : estimator::iss_handrail(length_m);
-    // Told the length, the detector looks for that one, not every ISS type.
-    if (true_length) cfg.handrail_type_count = 0;
-    cfg.gripper_angle_rad = static_cast<float>(sc.gripper_angle_deg * M_PI / 180.0);
+    // Each configuration as the scenario sets it: its handrail and gripper.
+    auto for_scenario = [&](estimator::DetectorConfig c) {
+      c.handrail =
+          round ? estimator::paper_round_handrail(length_m) : estimator::iss_handrail(length_m);
+      // Told the length, the detector looks for that one, not every ISS type.
+      if (true_length) c.handrail_type_count = 0;
+      c.gripper_angle_rad = static_cast<float>(sc.gripper_angle_deg * M_PI / 180.0);
+      return c;
+    };
+    const estimator::DetectorConfig cfg = for_scenario(base_cfg);
+    // The other candidates' proposed detectors (the first is `proposed`).
+    // (Held by pointer: a detector points at its own clock and must not move.)
+    std::vector<std::unique_ptr<estimator::HandrailDetector>> other_candidates;
+    for (std::size_t c = 1; c < candidates.size(); ++c) {
+      other_candidates.push_back(
+          std::make_unique<estimator::HandrailDetector>(for_scenario(candidates[c])));
+    }
     std::size_t n = sc.T_world_cam.size();
     if (max_frames >= 0) n = std::min(n, static_cast<std::size_t>(max_frames));
     const ScenarioResult blank = r;
@@ -267,6 +300,18 @@ int main(int argc, char** argv) {
           out.method[m].all.add(d[m], truth, targets[m], reach_targets[m]);
           if (&out == &r) {
             by_surface_length[m][group].add(d[m], truth, targets[m], reach_targets[m]);
+          }
+        }
+        if (&out == &r) {
+          tools::add_to_module(by_candidate_module[0], out.surface, d[0], truth, targets[0],
+                               reach_targets[0]);
+          for (std::size_t c = 1; c < candidates.size(); ++c) {
+            const estimator::HandrailDetection dc =
+                other_candidates[c - 1]->detect(cloud, estimator::Method::kProposed);
+            tools::add_to_module(
+                by_candidate_module[c], out.surface, dc, truth,
+                tools::scored_target(dc, truth, cfg.gripper_angle_rad, target, false),
+                tools::scored_target(dc, truth, cfg.gripper_angle_rad, reach_target, true));
           }
         }
         const bool is_false = scored.false_frames.size() > false_before;
@@ -342,14 +387,13 @@ int main(int argc, char** argv) {
   }
   // By surface and handrail length, the rack walls' Figure 15,
   // the state confusion on the approaches, and why frames failed.
-  md << "\n## By surface and handrail length\n\n"
-     << "Every frame of every scenario run, grouped by what the handrails stand on and the "
+  md << "\n## By module and handrail length\n\n"
+     << "Every frame of every scenario run, grouped by the module the handrails stand in and the "
         "target's bar length (frames without a target apart: any detection there is false).\n\n"
      << "| surface | target length | method | frames | with target | detected | in reach | "
         "detected in reach | false |\n"
      << "|---|---|---|---|---|---|---|---|---|\n";
-  for (const char* surface :
-       {"flat wall", "rack wall", "rack wall (control)", "Columbus", "module mesh"}) {
+  for (const std::string& surface : module_order()) {
     for (const auto& kv : by_surface_length[0]) {
       if (kv.first.first != surface) continue;
       for (int m = 0; m < 2; ++m) {
@@ -366,8 +410,7 @@ int main(int argc, char** argv) {
   md << "\nFrame time, proposed method, every frame of a surface's scenarios pooled "
         "(wall clock in this process; estimator_bench measures it alone):\n\n"
      << "| surface | frames | median ms | 90th percentile ms |\n|---|---|---|---|\n";
-  for (const char* surface :
-       {"flat wall", "rack wall", "rack wall (control)", "Columbus", "module mesh"}) {
+  for (const std::string& surface : module_order()) {
     std::vector<double> ms;
     for (const ScenarioResult& r : results) {
       if (r.surface != surface) continue;
@@ -377,7 +420,7 @@ int main(int argc, char** argv) {
     if (ms.empty()) continue;
     std::sort(ms.begin(), ms.end());
     char line[160];
-    std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", surface, ms.size(),
+    std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", surface.c_str(), ms.size(),
                   ms[ms.size() / 2], ms[ms.size() * 9 / 10]);
     md << line;
   }
@@ -390,6 +433,16 @@ int main(int argc, char** argv) {
     if (!columns.empty()) {
       md << tools::targets_section(columns, by_surface_length[0]);
       std::ofstream(out_dir + "/targets.json") << tools::targets_json(columns);
+    }
+  }
+  // Each module held out in turn from the choice among the candidates.
+  {
+    const std::vector<tools::HeldOutChoice> choices =
+        tools::leave_one_module_out(by_candidate_module);
+    if (!choices.empty()) {
+      md << tools::leave_one_module_out_section(choices, candidate_names);
+      std::ofstream(out_dir + "/lomo.json")
+          << tools::leave_one_module_out_json(choices, candidate_names);
     }
   }
   // The rack walls' Table 2, all lengths together, as Figure 15.
