@@ -4,7 +4,9 @@
 // (it hung), a 141-byte header claiming 8192 x 8192 points (1.3 GB), a
 // folder named x.pcd, an empty folder and an unwritable stdout or
 // --debug-png folder (exit 0 before; a --debug-png path that is a file is
-// refused up front).
+// refused up front). Then what each line reports: the mounts, the line
+// trace, and the best-supported line of all searches (best_line), in the
+// JSON and drawn in the debug pictures.
 //   argv[1]: the hrdetect program
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -16,8 +18,12 @@
 #include <string>
 #include <vector>
 
+#include <png.h>
+
 #include "child_process.hpp"
 #include "cmocka_cpp.hpp"
+#include "formats/json.hpp"
+#include "stage_pictures.hpp"
 #include "test_data.hpp"
 
 namespace {
@@ -197,6 +203,147 @@ void test_frame_ids_from_names(void**) {
   expect_in(r, "wall.pcd: --frame-ids-from-names: the name ends in no frame id");
 }
 
+// The frame-th JSON line of hrdetect's output, parsed.
+formats::JsonValue frame_json(const Result& r, int frame) {
+  std::istringstream lines(r.out);
+  int k = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("{\"frame\"", 0) != 0 || k++ != frame) continue;
+    formats::JsonValue v;
+    std::string error;
+    if (!formats::parse_json(line, &v, &error)) fail_msg("%s in: %s", error.c_str(), line.c_str());
+    return v;
+  }
+  fail_msg("no JSON line %d in hrdetect's output:\n%s", frame, r.out.c_str());
+  return {};
+}
+
+std::string text_of(const formats::JsonValue& object, const char* key) {
+  const formats::JsonValue* v = object.find(key);
+  if (!v || !v->is_string()) fail_msg("no string \"%s\"", key);
+  return v->text;
+}
+
+double number_of(const formats::JsonValue& object, const char* key) {
+  const formats::JsonValue* v = object.find(key);
+  if (!v || !v->is_number()) fail_msg("no number \"%s\"", key);
+  return v->number;
+}
+
+// Pixels of exactly `colour` in a PNG file; -1 when it cannot be read.
+long pixels_of_colour(const std::string& path, tools::Rgb colour) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) return -1;
+  image.format = PNG_FORMAT_RGB;
+  std::vector<png_byte> rgb(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, rgb.data(), 0, nullptr)) return -1;
+  long n = 0;
+  for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) {
+    n += rgb[i] == colour.r && rgb[i + 1] == colour.g && rgb[i + 2] == colour.b;
+  }
+  return n;
+}
+
+// A round bar read as an ISS one (the default): the first search's first
+// line was refused as CROSSES_BAR, which is all "first_line" says, yet the
+// bar itself was refused as WRONG_HEIGHT by the second search (search 1),
+// with 2,396 inliers. best_line names that refusal: the line of most
+// inliers in the whole trace (--lines), whatever search it came from.
+const std::string kRefusedLater = testing_support::source_path("tests/data/table2-round-2.pcd");
+
+void test_best_line_names_the_refusal_of_a_later_search(void**) {
+  const Result r = run({"--lines", kRefusedLater});
+  assert_int_equal(r.exit_status, 0);
+  const formats::JsonValue frame = frame_json(r, 0);
+  assert_string_equal(text_of(frame, "reason").c_str(), "NO_LINE");
+  assert_string_equal(text_of(frame, "first_line").c_str(), "CROSSES_BAR");
+  const formats::JsonValue* best = frame.find("best_line");
+  assert_non_null(best);
+  assert_true(best->is_object());
+  assert_int_equal(static_cast<int>(number_of(*best, "search")), 1);
+  assert_string_equal(text_of(*best, "verdict").c_str(), "WRONG_HEIGHT");
+  // The same line as the trace's best, searched on a mount off the plane.
+  const formats::JsonValue* lines = frame.find("lines");
+  assert_non_null(lines);
+  const formats::JsonValue* most = nullptr;
+  for (const formats::JsonValue& e : lines->items) {
+    if (!most || number_of(e, "inliers") > number_of(*most, "inliers")) most = &e;
+  }
+  assert_non_null(most);
+  assert_true(number_of(*best, "inliers") == number_of(*most, "inliers"));
+  assert_true(number_of(*best, "search") == number_of(*most, "search"));
+  assert_true(number_of(*best, "mount_m") > 0.005);
+  assert_true(number_of(*best, "visible_length_m") > 0.4);  // the whole bar
+  for (const char* key : {"middle_cam", "axis_cam"}) {
+    const formats::JsonValue* v = best->find(key);
+    assert_true(v && v->is_array() && v->items.size() == 3);
+  }
+  expect_in(run({"--help"}), "\"best_line\"");
+}
+
+// A frame with a find still names its best-supported line, accepted or
+// not: here the found bar, seen again by the second search on another
+// mount, where its front stands at the wrong height with more inliers.
+// No line of the frame has more inliers than the one it accepted.
+void test_a_found_frame_still_reports_its_best_line(void**) {
+  const Result r = run({kGood});
+  assert_int_equal(r.exit_status, 0);
+  const formats::JsonValue frame = frame_json(r, 0);
+  assert_string_equal(text_of(frame, "state").c_str(), "BE");
+  const formats::JsonValue* best = frame.find("best_line");
+  assert_true(best && best->is_object());
+  assert_true(number_of(*best, "inliers") >= number_of(frame, "inliers"));
+  assert_string_equal(text_of(*best, "verdict").c_str(), "WRONG_HEIGHT");
+  assert_int_equal(static_cast<int>(number_of(*best, "search")), 1);
+}
+
+// --debug-png draws the refused best line in its own colour over the line
+// and pose pictures; a frame whose best line was accepted gets none (its
+// pose is the line).
+void test_debug_pictures_draw_the_refused_best_line(void**) {
+  const std::string dir = g_dir + "/best";
+  const std::string accepted =
+      testing_support::source_path("tests/data/overhead-module-rail-raw-75.pcd");
+  const Result r = run({"--debug-png", dir, kRefusedLater, accepted});
+  assert_int_equal(r.exit_status, 0);
+  assert_string_equal(text_of(*frame_json(r, 1).find("best_line"), "verdict").c_str(), "ACCEPTED");
+  for (const char* stage : {"f_line", "g_pose"}) {
+    const long drawn =
+        pixels_of_colour(dir + "/table2-round-2_" + stage + ".png", tools::kRefusedLineColour);
+    if (drawn < 300) fail_msg("%s: %ld pixels of the refused line's colour", stage, drawn);
+    assert_int_equal(pixels_of_colour(dir + "/overhead-module-rail-raw-75_" + stage + ".png",
+                                      tools::kRefusedLineColour),
+                     0);
+  }
+}
+
+// A flat wall and nothing on it: no line to test, "best_line" is null
+// (not the line of the frame before it), and no line is drawn.
+void test_a_frame_without_lines_has_a_null_best_line(void**) {
+  const std::string wall = g_dir + "/flat-wall.pcd";
+  {
+    std::ofstream out(wall);
+    const int w = 160, h = 120;
+    const double f_px = 150.0, z_m = 0.6;
+    out << "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " << w
+        << "\nHEIGHT " << h << "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << w * h << "\nDATA ascii\n";
+    for (int r = 0; r < h; ++r)
+      for (int c = 0; c < w; ++c)
+        out << (c - 79.5) / f_px * z_m << " " << (r - 59.5) / f_px * z_m << " " << z_m << "\n";
+  }
+  const std::string dir = g_dir + "/wall";
+  const Result r = run({"--debug-png", dir, kRefusedLater, wall});
+  assert_int_equal(r.exit_status, 0);
+  assert_true(frame_json(r, 0).find("best_line")->is_object());
+  const formats::JsonValue frame = frame_json(r, 1);
+  assert_string_equal(text_of(frame, "reason").c_str(), "NO_CANDIDATES");
+  const formats::JsonValue* best = frame.find("best_line");
+  assert_non_null(best);
+  assert_int_equal(static_cast<int>(best->type), static_cast<int>(formats::JsonValue::Type::kNull));
+  assert_int_equal(pixels_of_colour(dir + "/flat-wall_g_pose.png", tools::kRefusedLineColour), 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -217,6 +364,10 @@ int main(int argc, char** argv) {
       cmocka_unit_test(test_mounts_are_reported_when_asked),
       cmocka_unit_test(test_frame_ids_from_names),
       cmocka_unit_test(test_lines_are_reported_when_asked),
+      cmocka_unit_test(test_best_line_names_the_refusal_of_a_later_search),
+      cmocka_unit_test(test_a_found_frame_still_reports_its_best_line),
+      cmocka_unit_test(test_debug_pictures_draw_the_refused_best_line),
+      cmocka_unit_test(test_a_frame_without_lines_has_a_null_best_line),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

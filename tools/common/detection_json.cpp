@@ -138,6 +138,36 @@ std::string line_trace_to_json(const estimator::LineTrace& trace) {
   return s + "]";
 }
 
+const estimator::LineTraceEntry* best_supported_line(const estimator::LineTrace& trace) {
+  const std::uint32_t n = std::min(trace.count, estimator::LineTrace::kMaxEntries);
+  const estimator::LineTraceEntry* best = nullptr;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    if (!best || trace.entries[k].inliers > best->inliers) best = &trace.entries[k];
+  }
+  return best;
+}
+
+std::string best_line_to_json(const estimator::LineTraceEntry* best) {
+  if (!best) return "null";
+  const estimator::LineTraceEntry& e = *best;
+  // Until seated, trace_line measures the front above the searched mount.
+  const float mount_m = e.has_center_line ? e.mount_m : e.search_mount_m;
+  char head[160];
+  std::snprintf(head, sizeof head,
+                "{\"search\":%u,\"mount_m\":%.4f,\"verdict\":\"%s\",\"inliers\":%u",
+                static_cast<unsigned>(e.search), mount_m, to_string(e.verdict), e.inliers);
+  std::string s = head;
+  if (!e.has_center_line) {
+    return s +
+           ",\"middle_cam\":null,\"axis_cam\":null,\"visible_length_m\":null,"
+           "\"front_height_m\":null}";
+  }
+  char lengths[96];
+  std::snprintf(lengths, sizeof lengths, ",\"visible_length_m\":%.4f,\"front_height_m\":%.4f}",
+                e.visible_length_m, e.front_height_m);
+  return s + ",\"middle_cam\":" + vec(e.middle_cam) + ",\"axis_cam\":" + vec(e.axis_cam) + lengths;
+}
+
 std::string with_line_trace(std::string object, const estimator::LineTrace& trace) {
   object.pop_back();  // the closing brace
   object += ",\"lines\":" + line_trace_to_json(trace);

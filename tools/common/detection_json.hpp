@@ -27,6 +27,21 @@ std::string mounts_to_json(const estimator::Plane& dominant, const estimator::Mo
 // and "ends_seen" once its ends were walked.
 std::string line_trace_to_json(const estimator::LineTrace& trace);
 
+// The line with the most inliers among every line the frame's searches
+// tested (the first of equals): the bar when it was in view, whichever
+// search refused it. Null when no line was traced. Lines the trace had to
+// drop are not among them.
+const estimator::LineTraceEntry* best_supported_line(const estimator::LineTrace& trace);
+
+// That line as hrdetect's "best_line" (null for none): {"search": n,
+// "mount_m": m, "verdict": "...", "inliers": n, "middle_cam": [x,y,z],
+// "axis_cam": [x,y,z], "visible_length_m": l, "front_height_m": h}, camera
+// frame, metres. front_height_m is the front's height above mount_m: the
+// mount the line was seated on, or, before seating, the one searched
+// (both from the dominant plane). The last four are null for a line that
+// never had a centre line.
+std::string best_line_to_json(const estimator::LineTraceEntry* best);
+
 // `object` (one JSON object, as detection_to_json writes it) with the line
 // trace added as its "lines" array, and "lines_not_kept" when the trace
 // had to drop any.

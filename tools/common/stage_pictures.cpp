@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include "depth_picture.hpp"
 #include "estimator/pixel_scale.hpp"
@@ -44,13 +46,60 @@ Image stage_image(const hal::DepthFrame& frame, const estimator::Workspace& ws, 
   return img.scaled(kPictureScale);
 }
 
+using Projection = std::function<bool(const Eigen::Vector3d&, Eigen::Vector2d*)>;
+
+// A label in the 5x7 font at scale 2 on a black box, so it reads over any
+// colour; moved inside the picture when (x, y) would cut it off.
+void draw_label(Image* img, int x, int y, const std::string& text, Rgb colour) {
+  constexpr int kScale = 2, kPad = 2;
+  const int w = 6 * kScale * static_cast<int>(text.size()), h = 7 * kScale;
+  x = std::clamp(x, kPad, std::max(kPad, img->width() - w - kPad));
+  y = std::clamp(y, kPad, std::max(kPad, img->height() - h - kPad));
+  img->rect(x - kPad, y - kPad, x + w + kPad - 1, y + h + kPad - 1, {0, 0, 0});
+  img->text(x, y, text, colour, kScale);
+}
+
+// The refused line's visible extent, outlined in black so it shows on the
+// depth colours too, with its verdict and search beside its middle. A line
+// refused before it had a centre line has no place: its label goes under
+// the picture's title instead.
+void draw_refused_line(Image* img, const Projection& project,
+                       const estimator::LineTraceEntry& line) {
+  const std::string label =
+      std::string(to_string(line.verdict)) + " S" + std::to_string(line.search);
+  Eigen::Vector2d middle_px;
+  if (!line.has_center_line || !project(line.middle_cam.cast<double>(), &middle_px)) {
+    draw_label(img, 4, 26, "BEST LINE " + label, kRefusedLineColour);
+    return;
+  }
+  const Eigen::Vector3d half = 0.5 * line.visible_length_m * line.axis_cam.cast<double>();
+  const Eigen::Vector3d middle = line.middle_cam.cast<double>();
+  draw_segment(img, project, middle - half, middle + half, {0, 0, 0}, 7);
+  draw_segment(img, project, middle - half, middle + half, kRefusedLineColour, 3);
+  // Beside the line, not on it: off the middle, across the line's
+  // direction in the picture.
+  Eigen::Vector2d end_px;
+  Eigen::Vector2d across(1.0, 0.0);
+  if (project(middle + half, &end_px) && (end_px - middle_px).norm() > 1e-6) {
+    const Eigen::Vector2d along = (end_px - middle_px).normalized();
+    across = Eigen::Vector2d(-along.y(), along.x());
+    if (across.x() < 0.0) across = -across;  // the text runs right: start right of the line
+  }
+  const Eigen::Vector2d at =
+      (middle_px + Eigen::Vector2d(0.5, 0.5)) * kPictureScale + 20.0 * across;
+  // Below the line the label hangs from that point; above it, stands on it.
+  const int y = static_cast<int>(at.y()) - (across.y() < 0.0 ? 14 : 0);
+  draw_label(img, static_cast<int>(at.x()), y, label, kRefusedLineColour);
+}
+
 }  // namespace
 
 std::vector<StagePicture> draw_stage_pictures(const hal::DepthFrame& frame,
                                               const estimator::OrganizedCloud& cloud,
                                               const estimator::HandrailDetector& det,
                                               const estimator::HandrailDetection& d,
-                                              const std::vector<CameraSegment>& overlay) {
+                                              const std::vector<CameraSegment>& overlay,
+                                              const estimator::LineTraceEntry* refused_line) {
   const estimator::Workspace& ws = det.workspace();
   const estimator::PixelScale scale = estimator::estimate_pixel_scale(cloud, ws.sample);
   auto project = [&](const Eigen::Vector3d& p, Eigen::Vector2d* px) {
@@ -74,6 +123,7 @@ std::vector<StagePicture> draw_stage_pictures(const hal::DepthFrame& frame,
                    d.end_seen[e] ? Rgb{255, 0, 255} : Rgb{120, 120, 255});
         }
       }
+      if (refused_line) draw_refused_line(&big, project, *refused_line);
     }
     big.text(4, 4, s.title, {255, 255, 255}, 2);
     out.push_back({s.suffix, std::move(big)});
@@ -83,6 +133,9 @@ std::vector<StagePicture> draw_stage_pictures(const hal::DepthFrame& frame,
   for (const CameraSegment& seg : overlay) {
     draw_segment(&pose, project, seg.first, seg.second, kOverlayColour, 2);
   }
+  // Under the pose: when the refused line is the found bar seen again from
+  // another mount, the answer stays in view.
+  if (refused_line) draw_refused_line(&pose, project, *refused_line);
   if (found) {
     draw_segment(&pose, project, d.ends_cam[0].cast<double>(), d.ends_cam[1].cast<double>(),
                  {255, 255, 255}, 3);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "estimator/handrail_detector.hpp"
+#include "estimator/line_trace.hpp"
 #include "hal/depth_frame.hpp"
 #include "png_image.hpp"
 
@@ -27,11 +28,19 @@ using CameraSegment = std::pair<Eigen::Vector3d, Eigen::Vector3d>;
 // grey; the line's ends (magenta when seen); then the pose over the depth
 // image. The workspace shows the last mount searched unless the detector was
 // configured with workspace_shows_result. `overlay` is drawn in green.
-std::vector<StagePicture> draw_stage_pictures(const hal::DepthFrame& frame,
-                                              const estimator::OrganizedCloud& cloud,
-                                              const estimator::HandrailDetector& det,
-                                              const estimator::HandrailDetection& d,
-                                              const std::vector<CameraSegment>& overlay = {});
+// `refused_line` (a line from the detector's trace that it refused, or
+// null) is drawn in orange over the line and pose pictures with its
+// verdict and search beside it ("NOT_ON_TRACK S2"): a refusal by a search
+// the workspace does not show.
+std::vector<StagePicture> draw_stage_pictures(
+    const hal::DepthFrame& frame, const estimator::OrganizedCloud& cloud,
+    const estimator::HandrailDetector& det, const estimator::HandrailDetection& d,
+    const std::vector<CameraSegment>& overlay = {},
+    const estimator::LineTraceEntry* refused_line = nullptr);
+
+// The colour refused_line is drawn in: no depth colour, stage or overlay
+// has it, so it can be told (and counted) in any picture.
+constexpr Rgb kRefusedLineColour{255, 140, 0};
 
 // The pictures side by side, `columns` to a row, under a caption (one
 // line of text per '\n'-separated part).

@@ -52,6 +52,10 @@ void usage(FILE* out) {
                "                           verdict, mount search, place and ends\n"
                "                           (tools/README.md): why the line that won won\n"
                "  -h, --help               this text\n\n"
+               "Every line also has \"best_line\": the line with the most inliers over all\n"
+               "of the frame's mount searches, with the search that tested it, its mount,\n"
+               "place and verdict (null when no line was tested): why the bar, when it was\n"
+               "in view, was refused. --debug-png draws it, with its verdict, if refused.\n\n"
                "exit status: 0 when every file was read, 1 when any file could not be\n"
                "(the others are still processed), 2 for bad options.\n");
 }
@@ -116,15 +120,42 @@ bool frame_id_from_name(const std::string& path, std::uint64_t* id) {
   return true;
 }
 
+// `object` (one JSON object) with "name": value added at its end.
+void append_field(std::string* object, const char* name, const std::string& value) {
+  object->pop_back();  // the closing brace
+  *object += ",\"" + std::string(name) + "\":" + value + "}";
+}
+
+// The lines the detector tested on this frame. A frame it turned away
+// before sampling it (empty, too large) leaves the last frame's trace in
+// place: none of those lines are this frame's.
+const estimator::LineTrace& frame_line_trace(const estimator::HandrailDetector& det,
+                                             const estimator::HandrailDetection& d) {
+  static const estimator::LineTrace kNoLines;
+  const bool sampled = d.status != estimator::DetectStatus::kEmptyFrame &&
+                       d.status != estimator::DetectStatus::kFrameTooLarge;
+  return sampled ? det.last_line_trace() : kNoLines;
+}
+
+// The best-supported line when the detector refused it (null otherwise):
+// the one the pictures must show, since the workspace shows only one
+// search, and an accepted line is the pose already drawn.
+const estimator::LineTraceEntry* refused(const estimator::LineTraceEntry* best) {
+  return best && best->verdict != estimator::LineVerdict::kAccepted ? best : nullptr;
+}
+
 // One picture per stage (common/stage_pictures.hpp), each written to
-// DIR/NAME_STAGE.png. False, with *error, when a picture could not be
+// DIR/NAME_STAGE.png, with the refused line (or none) drawn over the line
+// and pose pictures. False, with *error, when a picture could not be
 // written; the others are still written.
 bool write_debug_pictures(const std::string& dir, const std::string& name,
                           const hal::DepthFrame& frame, const estimator::OrganizedCloud& cloud,
                           const estimator::HandrailDetector& det,
-                          const estimator::HandrailDetection& d, std::string* error) {
+                          const estimator::HandrailDetection& d,
+                          const estimator::LineTraceEntry* refused_line, std::string* error) {
   bool written = true;
-  for (const tools::StagePicture& p : tools::draw_stage_pictures(frame, cloud, det, d)) {
+  for (const tools::StagePicture& p :
+       tools::draw_stage_pictures(frame, cloud, det, d, {}, refused_line)) {
     written = p.image.write_png(dir + "/" + name + "_" + p.suffix + ".png", error) && written;
   }
   return written;
@@ -220,7 +251,9 @@ int main(int argc, char** argv) {
   // The pictures show the workspace: keep it on the winning mount's search.
   if (!debug_dir.empty()) cfg.workspace_shows_result = true;
   estimator::HandrailDetector detector(cfg);
-  detector.set_line_trace(show_lines);
+  // Always on: every line reports its best-supported line. The trace is a
+  // fixed buffer in the detector, one copy per tested line.
+  detector.set_line_trace(true);
   estimator::TrackerConfig track_cfg;
   track_cfg.target_standoff_m = cfg.target_standoff_m;
   estimator::HandrailTracker tracker(track_cfg);
@@ -256,17 +289,17 @@ int main(int argc, char** argv) {
     const hal::DepthFrame frame = pcd.view(id, 0);
     const estimator::OrganizedCloud cloud = tools::to_estimator_cloud(frame, &buffer);
     const estimator::HandrailDetection d = detector.detect(cloud, method);
+    const estimator::LineTrace& trace = frame_line_trace(detector, d);
+    const estimator::LineTraceEntry* best = tools::best_supported_line(trace);
     std::string line = tools::detection_to_json(file, d);
+    append_field(&line, "best_line", tools::best_line_to_json(best));
     if (show_mounts) {
-      line.pop_back();  // the closing brace
-      line += ",\"mount_search\":" +
-              tools::mounts_to_json(detector.last_dominant_plane(), detector.last_mounts()) + "}";
+      append_field(&line, "mount_search",
+                   tools::mounts_to_json(detector.last_dominant_plane(), detector.last_mounts()));
     }
-    if (show_lines) line = tools::with_line_trace(line, detector.last_line_trace());
-    if (sequence) {
-      line.pop_back();  // the closing brace
-      line += ",\"track\":" + tools::track_to_json(tracker.update(d, still, still)) + "}";
-    }
+    if (show_lines) line = tools::with_line_trace(line, trace);
+    if (sequence)
+      append_field(&line, "track", tools::track_to_json(tracker.update(d, still, still)));
     // A result that cannot be written is lost: say so and stop, since
     // every later one would be lost too.
     if (std::printf("%s\n", line.c_str()) < 0 || std::fflush(stdout) != 0) {
@@ -274,8 +307,8 @@ int main(int argc, char** argv) {
                    std::strerror(errno));
       return 1;
     }
-    if (!debug_dir.empty() &&
-        !write_debug_pictures(debug_dir, stem(file), frame, cloud, detector, d, &error)) {
+    if (!debug_dir.empty() && !write_debug_pictures(debug_dir, stem(file), frame, cloud, detector,
+                                                    d, refused(best), &error)) {
       std::fprintf(stderr, "hrdetect: --debug-png: %s\n", error.c_str());
       all_read = false;
     }
