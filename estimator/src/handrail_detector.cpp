@@ -73,6 +73,11 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   HandrailDetection out;
   out.frame_id = cloud.frame_id;
   out.capture_time_us = cloud.capture_time_us;
+  // No earlier frame's surfaces or lines in the diagnostics, whatever this
+  // frame's fate.
+  mounts_ = MountHypotheses{};
+  trace_.clear();
+  dominant_ = Plane{};
   if (cloud.width > cfg_.max_width || cloud.height > cfg_.max_height ||
       cloud.size() > ws_.max_pixels) {
     out.status = DetectStatus::kFrameTooLarge;
@@ -81,10 +86,6 @@ HandrailDetection HandrailDetector::detect(const OrganizedCloud& cloud, Method m
   } else {
     // Seeded from the frame id: a frame always gives the same answer.
     rng_.reseed(frame_seed(cfg_.seed, cloud.frame_id));
-    // No earlier frame's surfaces or lines in the diagnostics.
-    mounts_ = MountHypotheses{};
-    trace_.clear();
-    dominant_ = Plane{};
     // Emptiness is judged on the lattice sample: a frame with fewer than
     // three usable pixels in it has no wall to find.
     out.counts.valid = static_cast<std::uint32_t>(sample_valid_points(cloud, cfg_, ws_));

@@ -138,6 +138,17 @@ void test_line_trace_names_every_tested_line(void**) {
   // A frame with nothing to test leaves the trace empty.
   det.detect(testing_support::render(testing_support::SyntheticScene{}, &pts, 11));
   assert_int_equal(det.last_line_trace().count, 0);
+  // So does a frame turned away before it is sampled, and its mounts and
+  // plane are not the last frame's either.
+  det.detect(testing_support::render(s, &pts, 12));
+  assert_true(det.last_line_trace().count >= 1);
+  OrganizedCloud too_wide = testing_support::render(s, &pts, 13);
+  too_wide.width = cfg.max_width + 1;
+  assert_int_equal(static_cast<int>(det.detect(too_wide).status),
+                   static_cast<int>(DetectStatus::kFrameTooLarge));
+  assert_int_equal(det.last_line_trace().count, 0);
+  assert_int_equal(det.last_mounts().count, 0);
+  assert_true(det.last_dominant_plane().normal.isZero());
 }
 
 void test_bar_past_the_find_range_is_refused(void**) {
