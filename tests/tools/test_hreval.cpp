@@ -208,6 +208,14 @@ void test_leave_one_module_out_chooses_on_the_other_modules(void**) {
       }
     }
     const std::string report = testing_support::read_text(g_dir + "/lomo/report.md");
+    // Where the figures come from: when, which commit, which machine.
+    const std::size_t run = report.find("\nRun ");
+    if (run == std::string::npos || report.find(" UTC, ", run) == std::string::npos ||
+        report.find(" cores), ", run) == std::string::npos ||
+        (report.find("commit ", run) == std::string::npos &&
+         report.find("not a git checkout", run) == std::string::npos)) {
+      fail_msg("the report does not say where it was run:\n%.400s", report.c_str());
+    }
     if (report.find("| flat wall | `" + c.winner + "` | 100.0 |") == std::string::npos) {
       fail_msg("no held-out row for the flat wall:\n%s", report.c_str());
     }

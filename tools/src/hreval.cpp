@@ -26,6 +26,7 @@
 #include "eval_report_tables.hpp"
 #include "eval_targets.hpp"
 #include "output_dir.hpp"
+#include "run_provenance.hpp"
 #include "sim_camera_path.hpp"
 #include "sim_hal/scenario.hpp"
 #include "worst_frame.hpp"
@@ -33,6 +34,9 @@
 // The flight configuration's use case (fsw_app/config/fsw_app.json).
 constexpr const char* kUseCase = "MODE_9_5FPS_2000";
 
+#ifndef HRP_SOURCE_DIR
+#define HRP_SOURCE_DIR "."
+#endif
 #ifndef HRP_SCENARIO_DIR
 #define HRP_SCENARIO_DIR "sim_hal/scenarios"
 #endif
@@ -348,7 +352,8 @@ int main(int argc, char** argv) {
 
   // The report.
   std::ostringstream md;
-  md << "# hreval report\n\nDetection: frames where the detector found the target handrail "
+  md << "# hreval report\n\nRun " << tools::run_provenance(HRP_SOURCE_DIR)
+     << ".\n\nDetection: frames where the detector found the target handrail "
         "(within 5 cm of its centre line and 15° of its direction) over frames with a target "
         "(at least 30 % of a handrail in view). False: frames with a detection that is not the "
         "target, "
