@@ -797,6 +797,230 @@ def dev_sweep():
                            "seed; development set only).",
             "seed": 2401, "frame_rate_hz": 5, "gripper_angle_deg": 0, "scene": scene, "poses": poses}
 
+
+# ---------------------------------------------------------------------------
+# The nodes and the Cupola (sim_hal/assets/iss_modules/*.obj: compact copies
+# of the shared meshes, already turned to the station's Z-up frame and kept
+# in station coordinates, so placed with no position and no rotation). Only
+# the handrails each mesh models are in view: obj_handrails.py found them
+# (assets/iss_modules/<module>.handrails.json) and the mesh's "handrails"
+# make them ground truth. Per module: several rails seen head-on and oblique
+# (up to 45 deg), vertical and horizontal in the image, with one end out of
+# view, from 0.3 to 1.2 m, some among clutter; and 12 views of walls, corners
+# and hatches with no handrail in view (the views were surveyed with hrsim:
+# no labelled rail, nor the Cupola's four unlabelled bracket-held bars, in
+# view). The gripper angle is 0 as in columbus_views(): rails vertical in
+# the image are the gripper's; a rail horizontal in the image is still the
+# frame's target when it is the only one in view (tools/doc/hreval.md).
+# These are held-out scenes: nothing in the detector is tuned on them.
+import math
+
+def unit(v):
+    n = math.sqrt(sum(c * c for c in v))
+    return [c / n for c in v]
+
+def module_rails(module):
+    with open(os.path.join(ASSETS, "iss_modules", module + ".handrails.json")) as f:
+        return json.load(f)["handrails"]
+
+def rail_frame(h):
+    """A labelled rail's centre, axis, normal (toward the room), across."""
+    e0, e1 = h["ends"]
+    c = [(e0[i] + e1[i]) / 2 for i in range(3)]
+    a = unit([e1[i] - e0[i] for i in range(3)])
+    n = unit(h["normal"])
+    return c, a, n, cross(a, n), h["length_m"]
+
+def box_rpy(n, u, v):
+    """rpy_deg turning a box's x, y, z to n, u, v (scenario.cpp: Rz Ry Rx)."""
+    R = [[n[i], u[i], v[i]] for i in range(3)]
+    pitch = math.asin(max(-1.0, min(1.0, -R[2][0])))
+    roll = math.atan2(R[2][1], R[2][2])
+    yaw = math.atan2(R[1][0], R[0][0])
+    return [r4(math.degrees(roll)), r4(math.degrees(pitch)), r4(math.degrees(yaw))]
+
+class RailLayout(FlatLayout):
+    """clutter_on()'s rail coordinates around a module's rail: a along it,
+    c across it, height off the surface it stands on (its centre line's
+    stand-off behind it). Across the rail, past 17 cm, distances are halved:
+    the nodes' corner panels are narrow."""
+    def __init__(self, h, standoff):
+        c, a, n, w, _ = rail_frame(h)
+        FlatLayout.__init__(self, Wall(add(c, n, -standoff), n, a))
+
+    def world(self, a, c, height):
+        if abs(c) > 0.17:
+            c = math.copysign(0.17 + 0.5 * (abs(c) - 0.17), c)
+        return self.wall.point(c, a, height)
+
+def module_clutter(h, rng, standoff):
+    lay = RailLayout(h, standoff)
+    cables, boxes = clutter_on(lay, rng, h["length_m"])
+    # clutter_on() sizes boxes along the world's axes (its walls face x):
+    # turn them to the rail's surface (x = normal, y = across, z = along).
+    rpy = box_rpy(lay.wall.n, lay.wall.u, lay.wall.v)
+    for b in boxes:
+        b["rpy_deg"] = rpy
+    return cables, boxes
+
+def look(label, position, target, up, frames, to=None, rpy0=(0, 0, 0), rpy1=None):
+    facing = unit([target[i] - position[i] for i in range(3)])
+    pose = {"label": label, "position": vec(position), "facing": vec(facing), "up": vec(up),
+            "rpy_deg": list(rpy0), "frames": frames}
+    if to is not None:
+        pose["to"] = {"position": vec(to), "rpy_deg": list(rpy1 if rpy1 is not None else rpy0)}
+    return pose
+
+def rail_views(tag, h, rng, far=1.2, flip=False):
+    """24 frames around one labelled rail (rail-vertical views have up =
+    the rail's axis; horizontal ones up = across it)."""
+    u = rng.uniform
+    c, a, n, w, L = rail_frame(h)
+    j = lambda k: [r4(u(-k, k)), r4(u(-k, k)), r4(u(-k, k))]
+    poses = []
+    # Head-on, from `far` to 0.35 m, the rail vertical in the image, the
+    # view 5 to 10 cm along it from its middle.
+    off = rng.choice((-1, 1)) * u(0.05, 0.10)
+    t = add(c, a, off)
+    near = 0.35 if L < 0.8 else 0.4  # a long rail still 30 % in view
+    poses.append(look(tag + "-head-on", add(t, n, far), t, a, 8, to=add(t, n, near), rpy0=j(3), rpy1=j(3)))
+    # Oblique, 30 to 45 deg across the rail, 0.8 to 0.5 m, rail vertical.
+    th = math.radians(u(30, 45)) * rng.choice((-1, 1)) * (-1 if flip else 1)
+    d = add(scale_(n, math.cos(th)), w, math.sin(th))
+    poses.append(look(tag + "-oblique", add(c, d, min(0.8, far)), c, a, 6, to=add(c, d, 0.5), rpy0=j(2), rpy1=j(4)))
+    # Horizontal in the image, seen 15 to 35 deg along it, 0.9 to 0.45 m.
+    ph = math.radians(u(15, 35)) * rng.choice((-1, 1))
+    d = add(scale_(n, math.cos(ph)), a, math.sin(ph))
+    poses.append(look(tag + "-horizontal", add(c, d, min(0.9, far)), c, w, 6, to=add(c, d, 0.45), rpy0=j(3), rpy1=j(3)))
+    # One end out of view: looking 12 to 18 cm inside one end from 0.35 to
+    # 0.5 m (0.55 to 0.65 m for a long rail, still 30 % in view), the far
+    # end past the image's edge, up to 20 deg oblique.
+    sgn = rng.choice((-1, 1))
+    t = add(c, a, sgn * (L / 2 - u(0.12, 0.18)))
+    th = math.radians(u(-20, 20))
+    d = add(scale_(n, math.cos(th)), w, math.sin(th))
+    d0, d1 = (u(0.45, 0.5), u(0.35, 0.4)) if L < 0.8 else (u(0.6, 0.65), u(0.55, 0.6))
+    if L < 0.35:
+        # A 0.2 m rail: looking 3 cm past one end from 0.3 m, its other end
+        # just out of view.
+        t = add(c, a, sgn * (L / 2 + 0.03))
+        d0, d1 = 0.32, 0.3
+    poses.append(look(tag + "-partial", add(t, d, d0), t, a, 4, to=add(t, d, d1), rpy0=j(3), rpy1=j(3)))
+    return poses
+
+def scale_(v, k):
+    return [k * x for x in v]
+
+# Per module: the mesh, the seed, the rails viewed (indices into its
+# handrails.json, sorted by length) with the clutter placed near some of
+# them (their stand-offs, obj_handrails.py -v), the farthest head-on view,
+# (the Cupola: rails 1, 4 and 5 stand behind equipment seen from the room,
+# so rail 3 is seen twice, with other draws),
+# and the no-handrail views (position, looked-at point, up), surveyed.
+ISS_OBJ_MODULES = {
+    "node1": {"mesh": "node_1", "seed": 2501, "far": 1.2,
+              "rails": [(3, None), (5, 0.083), (8, None), (13, 0.070)],
+              "bare": [
+                 ([-0.007, -16.694, 0.017], [1.049, -16.327, 0.083], [-0.131, 0.199, 0.971]),  # 1.12 m
+                 ([-0.435, -14.894, 0.413], [-0.191, -15.151, 1.701], [0.916, 0.389, -0.095]),  # 1.34 m
+                 ([-0.317, -16.45, 0.449], [-0.366, -17.003, 1.057], [0.473, 0.632, 0.614]),  # 0.82 m
+                 ([0.084, -14.616, 0.44], [0.962, -14.115, 1.163], [-0.488, -0.318, 0.813]),  # 1.24 m
+                 ([-0.005, -17.038, -0.274], [0.246, -17.696, 0.087], [-0.76, 0.064, 0.647]),  # 0.79 m
+                 ([0.065, -15.768, 0.379], [0.371, -15.578, 1.065], [-0.757, -0.458, 0.466]),  # 0.78 m
+                 ([-0.124, -16.069, -0.058], [1.049, -16.498, 0.141], [-0.014, 0.391, 0.92]),  # 1.26 m
+                 ([0.436, -16.321, 0.078], [0.562, -15.667, 1.065], [0.44, -0.773, 0.456]),  # 1.19 m
+                 ([-0.043, -14.354, 0.45], [-0.091, -13.101, 0.688], [-0.421, -0.185, 0.888]),  # 1.28 m
+                 ([0.005, -16.411, 0.2], [-1.033, -16.517, 0.507], [0.283, 0.008, 0.959]),  # 1.09 m
+                 ([0.289, -17.202, 0.465], [0.574, -17.589, 1.039], [-0.846, 0.142, 0.515]),  # 0.75 m
+                 ([-0.08, -14.103, 0.309], [0.148, -13.756, 1.065], [-0.599, -0.643, 0.477]),  # 0.86 m
+             ]},
+    "node2": {"mesh": "node_2", "seed": 2502, "far": 1.2,
+              "rails": [(6, 0.089), (7, None), (8, None), (9, 0.077)],
+              "bare": [
+                 ([-0.413, -3.202, -0.417], [-1.067, -3.644, -0.553], [-0.05, -0.225, 0.973]),  # 0.80 m
+                 ([0.006, -3.579, 0.072], [-0.252, -3.899, -0.71], [-0.355, -0.819, 0.452]),  # 0.88 m
+                 ([0.283, 0.956, -0.466], [0.323, 1.226, -1.067], [0.979, 0.155, 0.135]),  # 0.66 m
+                 ([-0.491, -3.321, -0.194], [-0.389, -3.202, -0.778], [0.728, 0.636, 0.257]),  # 0.60 m
+                 ([-0.046, 0.286, 0.443], [-0.131, 0.686, 1.584], [0.881, 0.462, -0.097]),  # 1.21 m
+                 ([-0.363, -3.033, -0.211], [0.794, -2.927, -0.299], [0.051, 0.245, 0.968]),  # 1.16 m
+                 ([-0.211, -2.946, 0.021], [-0.775, -3.178, 0.351], [0.481, 0.076, 0.873]),  # 0.69 m
+                 ([-0.266, -2.983, -0.015], [-0.794, -3.728, 0.398], [-0.36, 0.634, 0.684]),  # 1.00 m
+                 ([-0.379, -1.726, 0.484], [-0.279, -1.617, 1.101], [0.759, -0.65, -0.007]),  # 0.63 m
+                 ([-0.093, -2.129, -0.47], [-0.926, -2.522, -0.361], [0.378, -0.608, 0.698]),  # 0.93 m
+                 ([0.195, -2.257, 0.435], [0.786, -2.761, 0.102], [0.514, 0.036, 0.857]),  # 0.85 m
+                 ([0.329, -2.553, -0.094], [0.758, -2.88, 0.355], [-0.73, -0.02, 0.683]),  # 0.70 m
+             ]},
+    "node3": {"mesh": "node_3", "seed": 2503, "far": 1.2,
+              "rails": [(6, None), (9, 0.065), (10, 0.063), (0, None)], "flip": (6,),
+              "bare": [
+                 ([7.099, -14.519, 0.102], [7.944, -15.441, 0.199], [0.25, 0.325, 0.912]),  # 1.25 m
+                 ([7.22, -14.359, 0.184], [7.628, -15.105, 1.016], [-0.814, 0.173, 0.555]),  # 1.19 m
+                 ([4.614, -14.347, 0.312], [4.344, -13.735, 1.003], [0.801, -0.258, 0.541]),  # 0.96 m
+                 ([6.929, -14.479, -0.178], [7.047, -13.524, -0.854], [0.529, 0.446, 0.722]),  # 1.18 m
+                 ([7.667, -15.053, 0.099], [7.523, -15.815, 0.907], [0.563, 0.549, 0.618]),  # 1.12 m
+                 ([6.849, -14.912, 0.32], [8.062, -15.35, 0.159], [0.294, 0.519, 0.802]),  # 1.30 m
+                 ([7.381, -14.648, -0.109], [8.014, -14.699, -0.249], [0.222, 0.092, 0.971]),  # 0.65 m
+                 ([7.543, -14.975, 0.344], [8.022, -14.958, -0.327], [0.784, -0.286, 0.552]),  # 0.82 m
+                 ([4.929, -14.408, 0.147], [4.232, -13.326, -0.263], [-0.487, 0.017, 0.873]),  # 1.35 m
+                 ([6.75, -15.037, -0.245], [7.822, -15.451, -0.216], [-0.165, -0.365, 0.916]),  # 1.15 m
+                 ([4.596, -15.275, -0.436], [5.195, -15.815, 0.107], [-0.43, 0.355, 0.83]),  # 0.97 m
+                 ([5.301, -15.124, 0.173], [5.377, -13.785, -0.022], [-0.007, 0.145, 0.989]),  # 1.36 m
+             ]},
+    "cupola": {"mesh": "cupola", "seed": 2504, "far": 0.9,
+               "rails": [(0, 0.055), (2, None), (3, 0.055), (3, None)],
+               "bare": [
+                 ([6.005, -14.427, 2.429], [6.105, -14.324, 3.041], [0.982, 0.071, -0.173]),  # 0.63 m
+                 ([6.252, -14.81, 2.429], [6.159, -15.122, 3.207], [0.988, -0.14, 0.062]),  # 0.84 m
+                 ([6.397, -14.576, 2.672], [6.761, -14.688, 3.211], [-0.443, 0.77, 0.46]),  # 0.66 m
+                 ([6.493, -14.596, 2.857], [6.728, -14.949, 3.217], [-0.361, 0.537, 0.763]),  # 0.56 m
+                 ([6.643, -14.673, 2.416], [6.652, -14.497, 3.211], [0.998, -0.059, 0.002]),  # 0.81 m
+                 ([6.517, -14.712, 2.738], [6.597, -14.275, 3.074], [-0.479, -0.478, 0.736]),  # 0.56 m
+                 ([6.67, -14.562, 2.824], [6.571, -14.289, 3.121], [0.248, -0.671, 0.699]),  # 0.41 m
+                 ([6.085, -14.675, 2.823], [6.793, -14.958, 3.21], [-0.026, 0.783, 0.622]),  # 0.85 m
+                 ([6.61, -14.993, 2.303], [6.419, -15.066, 3.253], [0.81, -0.574, 0.119]),  # 0.97 m
+                 ([6.665, -15.11, 2.59], [6.804, -15.136, 3.205], [0.975, 0.03, -0.22]),  # 0.63 m
+                 ([6.583, -15.121, 2.881], [6.826, -14.954, 3.21], [-0.83, 0.163, 0.533]),  # 0.44 m
+                 ([6.163, -14.768, 2.67], [6.216, -14.557, 3.255], [0.99, 0.078, -0.118]),  # 0.62 m
+             ]},
+}
+
+def module_views(name):
+    m = ISS_OBJ_MODULES[name]
+    rng = random.Random(m["seed"])
+    rails = module_rails(m["mesh"])
+    cables, boxes, poses = [], [], []
+    seen = []
+    for k, (index, standoff) in enumerate(m["rails"]):
+        h = rails[index]
+        tag = "%s-rail%d%s" % (name, index, "b" if index in seen else "")
+        seen.append(index)
+        poses += rail_views(tag, h, rng, m["far"], index in m.get("flip", ()))
+        if standoff is not None:
+            more_cables, more_boxes = module_clutter(h, rng, standoff)
+            cables += more_cables
+            boxes += more_boxes
+    for k, (position, target, up) in enumerate(m["bare"]):
+        poses.append(look("%s-no-handrail-%d" % (name, k), position, target, up, 1))
+    scene = {"meshes": [{"path": "../assets/iss_modules/%s.obj" % m["mesh"], "reflectivity": 0.55,
+                         "handrails": rails}]}
+    if cables:
+        scene["cables"] = cables
+    if boxes:
+        scene["boxes"] = boxes
+    frames = sum(p["frames"] for p in poses)
+    return {"name": "%s-views" % name,
+            "description": ("Inside %s (assets/iss_modules/%s.obj, its %d modelled handrails labelled): %d rails "
+                            "seen head-on, oblique, horizontal in the image and with one end out of view, 0.3 to "
+                            "%.1f m, clutter near %d of them, and %d views with no handrail; %d frames. Held out: "
+                            "nothing is tuned on it.")
+                           % ({"node1": "Node 1 (Unity)", "node2": "Node 2 (Harmony)", "node3": "Node 3 (Tranquility)",
+                               "cupola": "the Cupola"}[name], m["mesh"], len(rails), len(m["rails"]), m["far"],
+                              sum(1 for _, s_ in m["rails"] if s_ is not None), len(m["bare"]), frames),
+            "seed": m["seed"], "frame_rate_hz": 5, "gripper_angle_deg": 0, "scene": scene, "poses": poses}
+
+if DEV_DIR is None:
+    rack_scenarios += [module_views(n) for n in ("node1", "node2", "node3", "cupola")]
+
 rack_scenarios += [columbus_approaches(), columbus_views()]
 if DEV_DIR is not None:
     rack_scenarios += [flat_clutter(), dev_sweep()]
