@@ -180,6 +180,11 @@ void EmulatedPicoFlexx::Impl::begin_frame(std::int64_t now_us) {
     ++counts.frames_corrupted;
     payload[h.payload_bytes / 3] ^= 0x01;
   }
+  if (corrupt_headers > 0) {
+    --corrupt_headers;
+    ++counts.headers_corrupted;
+    frame_bytes[40] ^= 0x01;  // the payload checksum's field: the header CRC no longer matches
+  }
   if (short_frames > 0) {
     --short_frames;
     ++counts.frames_shortened;

@@ -351,6 +351,16 @@ void EmulatedPicoFlexx::shorten_next_frames(int frames) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->short_frames += frames;
 }
+void EmulatedPicoFlexx::corrupt_next_headers(int frames) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->corrupt_headers += frames;
+}
+void EmulatedPicoFlexx::clear_frame_faults() {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->corrupt_frames = 0;
+  impl_->short_frames = 0;
+  impl_->corrupt_headers = 0;
+}
 void EmulatedPicoFlexx::mute_next_commands(int commands) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->muted_commands += commands;

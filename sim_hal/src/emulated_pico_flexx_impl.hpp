@@ -76,6 +76,7 @@ struct EmulatedPicoFlexx::Impl {
   // Faults.
   int corrupt_frames = 0;
   int short_frames = 0;
+  int corrupt_headers = 0;
   int muted_commands = 0;
   std::int64_t reply_delay_us = 0;
 

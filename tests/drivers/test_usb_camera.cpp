@@ -1,8 +1,9 @@
 // The Pico Flexx USB driver, real libusb code, against the emulated camera
 // (sim_hal/emulated_pico_flexx.hpp) under umockdev: enumeration, commands
 // and their failures, use-case change, streaming without loss, corrupt
-// and short frames, stall recovery, unplug and replug, and no allocation
-// per frame. One emulated device serves every test (umockdev allows only
+// and short frames (each counted once), a stream of nothing but corrupt
+// frames, stall recovery, unplug and replug, a lost camera found again,
+// and no allocation per frame. One emulated device serves every test (umockdev allows only
 // a few dozen descriptors per process), so the tests run in this order.
 #include <atomic>
 #include <chrono>
@@ -20,6 +21,8 @@
 namespace {
 
 using pico_flexx::CameraState;
+using pico_flexx::LostReason;
+using pico_flexx::StreamHealth;
 using pico_flexx::UsbStatus;
 
 // Every sample of a frame's images is a function of its sequence number
@@ -333,6 +336,106 @@ void test_corrupt_and_short_frames_dropped(void**) {
   assert_int_equal(c.frames_delivered, static_cast<std::uint64_t>(listener.frames.load()));
 }
 
+// A camera that sends nothing but corrupt frames is there and streaming:
+// for longer than the ladder used to take to give it up (2 s), it is
+// never silent, never recovering, never lost; each frame is refused once
+// and the stream reported CORRUPT_STREAM. Once the corruption stops, good
+// frames come at once: nothing was torn down.
+void test_corrupt_stream_never_lost(void**) {
+  assert_string_equal(pico_flexx::to_string(StreamHealth::kCorruptStream), "CORRUPT_STREAM");
+  assert_string_equal(pico_flexx::to_string(LostReason::kTransferErrors), "TRANSFER_ERRORS");
+  pico_flexx::UsbCamera cam(default_config(), g_rig->clock);
+  assert_int_equal(cam.open(), UsbStatus::kOk);
+  assert_int_equal(cam.health(), StreamHealth::kNotStreaming);
+  CheckingListener listener;
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kOk);
+  assert_true(frames_arrive(listener, 5, 5000));
+  assert_int_equal(cam.health(), StreamHealth::kOk);
+  const pico_flexx::UsbCounters c0 = cam.counters();
+  const sim_hal::EmulatorCounts e0 = g_rig->camera->counts();
+  g_rig->camera->corrupt_next_frames(100000);
+  bool left_streaming = false, reported_silent = false, reported_corrupt = false;
+  const auto began = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - began < std::chrono::milliseconds(3500)) {
+    left_streaming = left_streaming || cam.state() != CameraState::kStreaming;
+    reported_silent = reported_silent || cam.health() == StreamHealth::kSilent;
+    reported_corrupt = reported_corrupt || cam.health() == StreamHealth::kCorruptStream;
+    sleep_ms(10);
+  }
+  const pico_flexx::UsbCounters c1 = cam.counters();
+  const std::uint64_t refused = c1.assembly.frames_corrupt - c0.assembly.frames_corrupt;
+  std::printf("3.5 s of corrupt frames: %llu refused, %llu in a row, state %s, health %s\n",
+              static_cast<unsigned long long>(refused),
+              static_cast<unsigned long long>(c1.consecutive_bad_frames),
+              pico_flexx::to_string(cam.state()), pico_flexx::to_string(cam.health()));
+  assert_false(left_streaming);
+  assert_false(reported_silent);
+  assert_true(reported_corrupt);
+  assert_int_equal(cam.health(), StreamHealth::kCorruptStream);
+  assert_int_equal(c1.corrupt_streams, c0.corrupt_streams + 1);
+  assert_true(refused > 0);
+  assert_int_equal(c1.consecutive_bad_frames, refused);
+  // The ladder was left alone.
+  assert_int_equal(c1.silences, c0.silences);
+  assert_int_equal(c1.clear_halts, c0.clear_halts);
+  assert_int_equal(c1.reinitialisations, c0.reinitialisations);
+  assert_int_equal(c1.usb_resets, c0.usb_resets);
+
+  g_rig->camera->clear_frame_faults();
+  const auto cleared = std::chrono::steady_clock::now();
+  assert_true(frames_arrive(listener, 1, 1000));
+  std::printf("corruption stopped: a good frame %.3f s later\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - cleared).count());
+  assert_true(frames_arrive(listener, 10, 5000));
+  assert_true(wait_for([&] { return cam.health() == StreamHealth::kOk; }, 2000));
+  assert_int_equal(cam.counters().consecutive_bad_frames, 0);
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  assert_int_equal(cam.health(), StreamHealth::kNotStreaming);
+  const pico_flexx::UsbCounters c2 = cam.counters();
+  const sim_hal::EmulatorCounts e2 = g_rig->camera->counts();
+  // Every frame the camera corrupted was refused, once, and nothing else.
+  assert_int_equal(c2.assembly.frames_corrupt - c0.assembly.frames_corrupt,
+                   e2.frames_corrupted - e0.frames_corrupted);
+  assert_int_equal(c2.assembly.dropped() - c0.assembly.dropped(),
+                   e2.frames_corrupted - e0.frames_corrupted);
+  assert_int_equal(c2.assembly.transfers_discarded, c0.assembly.transfers_discarded);
+  assert_int_equal(listener.bad_frames.load(), 0);
+}
+
+// MODE_9 frames in 64 KB transfers (11 per frame) with a bad header CRC:
+// each frame refused once, not once per transfer, and within the frames
+// the driver counts as missed.
+void test_bad_headers_counted_once_per_frame(void**) {
+  pico_flexx::UsbCameraConfig config = default_config();
+  config.use_case_index = 3;  // MODE_9_25FPS_450
+  config.transfer_bytes = 64 * 1024;
+  config.transfer_count = 8;
+  pico_flexx::UsbCamera cam(config, g_rig->clock);
+  assert_int_equal(cam.open(), UsbStatus::kOk);
+  CheckingListener listener;
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kOk);
+  assert_true(frames_arrive(listener, 3, 10000));
+  const pico_flexx::UsbCounters c0 = cam.counters();
+  const sim_hal::EmulatorCounts e0 = g_rig->camera->counts();
+  g_rig->camera->corrupt_next_headers(3);
+  assert_true(frames_arrive(listener, 10, 10000));
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  const pico_flexx::UsbCounters c = cam.counters();
+  const sim_hal::EmulatorCounts e = g_rig->camera->counts();
+  const std::uint64_t refused = c.assembly.dropped() - c0.assembly.dropped();
+  const std::uint64_t missed = c.assembly.frames_missed - c0.assembly.frames_missed;
+  std::printf("3 MODE_9 frames with a bad header: %llu refused, %llu missed, %llu transfers\n",
+              static_cast<unsigned long long>(refused), static_cast<unsigned long long>(missed),
+              static_cast<unsigned long long>(c.assembly.transfers - c0.assembly.transfers));
+  assert_int_equal(e.headers_corrupted - e0.headers_corrupted, 3);
+  assert_int_equal(c.assembly.frames_bad_header - c0.assembly.frames_bad_header, 3);
+  assert_int_equal(refused, 3);
+  assert_int_equal(c.assembly.last_header_error, pico_flexx::ParseStatus::kBadCrc);
+  assert_int_equal(c.assembly.transfers_discarded, c0.assembly.transfers_discarded);
+  assert_true(missed >= refused);
+  assert_int_equal(listener.bad_frames.load(), 0);
+}
+
 void test_stall_recovery(void**) {
   pico_flexx::UsbCamera cam(default_config(), g_rig->clock);
   assert_int_equal(cam.open(), UsbStatus::kOk);
@@ -383,8 +486,10 @@ void test_ladder_to_usb_reset(void**) {
   assert_int_equal(listener.bad_frames.load(), 0);
 }
 
-// A camera that streams nothing through every rung: lost, SILENT.
-void test_silent_camera_lost(void**) {
+// A camera that streams nothing through every rung: lost, SILENT. The
+// driver goes on looking for it, backing off, with no busy loop; when it
+// streams again it is found again, without a restart.
+void test_silent_camera_lost_and_found_again(void**) {
   pico_flexx::UsbCamera cam(default_config(), g_rig->clock);
   assert_int_equal(cam.open(), UsbStatus::kOk);
   CheckingListener listener;
@@ -392,14 +497,33 @@ void test_silent_camera_lost(void**) {
   assert_true(frames_arrive(listener, 3, 5000));
   g_rig->camera->set_silent(true);
   assert_true(wait_for([&] { return cam.state() == CameraState::kLost; }, 6000));
-  g_rig->camera->set_silent(false);
   const pico_flexx::UsbCounters c = cam.counters();
-  assert_int_equal(cam.lost_reason(), pico_flexx::LostReason::kSilent);
+  assert_int_equal(cam.lost_reason(), LostReason::kSilent);
+  assert_int_equal(cam.health(), StreamHealth::kSilent);
   assert_int_equal(c.silences, 4);  // one per rung, and the last gives up
   assert_int_equal(c.clear_halts, 1);
   assert_int_equal(c.reinitialisations, 1);
   assert_int_equal(c.usb_resets, 1);
+  // Still silent: lost it stays, searched at 100, 300, 700, 1500 ms...
+  bool left_lost = false;
+  for (int i = 0; i < 150; ++i) {
+    left_lost = left_lost || cam.state() != CameraState::kLost;
+    sleep_ms(10);
+  }
+  const std::uint64_t attempts = cam.counters().reacquire_attempts;
+  std::printf("silent camera lost: %llu searches in 1.5 s\n",
+              static_cast<unsigned long long>(attempts));
+  assert_false(left_lost);
+  assert_true(attempts >= 2);
+  assert_true(attempts <= 8);
+  g_rig->camera->set_silent(false);
+  assert_true(wait_for([&] { return cam.state() == CameraState::kStreaming; }, 10000));
+  assert_true(frames_arrive(listener, 10, 5000));
+  assert_int_equal(cam.lost_reason(), LostReason::kNone);
+  assert_int_equal(cam.counters().reacquisitions, 1);
+  assert_true(wait_for([&] { return cam.health() == StreamHealth::kOk; }, 2000));
   assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  assert_int_equal(listener.bad_frames.load(), 0);
 }
 
 void test_unplug_and_replug(void**) {
@@ -428,7 +552,9 @@ void test_unplug_and_replug(void**) {
 }
 
 // Unplugged for longer than the reconnect window: lost, with the reason.
-void test_lost_when_not_back(void**) {
+// The driver goes on looking, backing off; replugged, the camera streams
+// again without a restart of the program.
+void test_lost_when_not_back_then_found(void**) {
   pico_flexx::UsbCameraConfig config = default_config();
   config.reconnect_window_ms = 500;
   pico_flexx::UsbCamera cam(config, g_rig->clock);
@@ -438,10 +564,50 @@ void test_lost_when_not_back(void**) {
   assert_true(frames_arrive(listener, 3, 5000));
   g_rig->camera->unplug();
   assert_true(wait_for([&] { return cam.state() == CameraState::kLost; }, 3000));
-  assert_int_equal(cam.lost_reason(), pico_flexx::LostReason::kUnplugged);
-  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  assert_int_equal(cam.lost_reason(), LostReason::kUnplugged);
+  assert_string_equal(pico_flexx::to_string(cam.lost_reason()), "UNPLUGGED");
+  assert_int_equal(cam.health(), StreamHealth::kNoDevice);
+  sleep_ms(1000);
+  const std::uint64_t attempts = cam.counters().reacquire_attempts;
+  assert_true(attempts >= 1);
+  assert_true(attempts <= 8);  // backing off, not spinning
+  assert_int_equal(cam.state(), CameraState::kLost);
   std::string error;
   assert_true(g_rig->camera->replug(&error));
+  assert_true(wait_for([&] { return cam.state() == CameraState::kStreaming; }, 5000));
+  assert_true(frames_arrive(listener, 10, 5000));
+  assert_int_equal(cam.lost_reason(), LostReason::kNone);
+  assert_int_equal(cam.counters().reacquisitions, 1);
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  assert_int_equal(listener.bad_frames.load(), 0);
+}
+
+// Lost, then the capture stopped and started again: refused while the
+// camera is away (NO_DEVICE), and streaming once it is back.
+void test_stop_and_start_after_lost(void**) {
+  pico_flexx::UsbCameraConfig config = default_config();
+  config.reconnect_window_ms = 500;
+  pico_flexx::UsbCamera cam(config, g_rig->clock);
+  assert_int_equal(cam.open(), UsbStatus::kOk);
+  CheckingListener listener;
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kOk);
+  assert_true(frames_arrive(listener, 3, 5000));
+  g_rig->camera->unplug();
+  assert_true(wait_for([&] { return cam.state() == CameraState::kLost; }, 3000));
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  assert_false(cam.capture_requested());
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kNoDevice);
+  assert_false(cam.capture_requested());
+  std::string error;
+  assert_true(g_rig->camera->replug(&error));
+  // Found by the driver's own search; open, not streaming, as it was left.
+  assert_true(wait_for([&] { return cam.state() == CameraState::kOpen; }, 5000));
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kOk);
+  assert_true(frames_arrive(listener, 10, 5000));
+  assert_int_equal(cam.state(), CameraState::kStreaming);
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kNotStreaming);
+  assert_int_equal(listener.bad_frames.load(), 0);
 }
 
 }  // namespace
@@ -456,11 +622,14 @@ int main(int, char** argv) {
       cmocka_unit_test(test_streaming_without_loss),
       cmocka_unit_test(test_slow_host_loses_frames_at_the_camera),
       cmocka_unit_test(test_corrupt_and_short_frames_dropped),
+      cmocka_unit_test(test_corrupt_stream_never_lost),
+      cmocka_unit_test(test_bad_headers_counted_once_per_frame),
       cmocka_unit_test(test_stall_recovery),
       cmocka_unit_test(test_ladder_to_usb_reset),
-      cmocka_unit_test(test_silent_camera_lost),
+      cmocka_unit_test(test_silent_camera_lost_and_found_again),
       cmocka_unit_test(test_unplug_and_replug),
-      cmocka_unit_test(test_lost_when_not_back),
+      cmocka_unit_test(test_lost_when_not_back_then_found),
+      cmocka_unit_test(test_stop_and_start_after_lost),
   };
   return cmocka_run_group_tests(tests, setup_rig, teardown_rig);
 }

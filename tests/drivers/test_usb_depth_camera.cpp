@@ -2,11 +2,14 @@
 // the emulated camera (sim_hal/rendered_frame_source.hpp), read through
 // real libusb by the driver, processed by the robot's ToF pipeline with the
 // calibration read from the camera, delivered by hal::DepthCamera. A wall
-// 1 m away must come out 1 m away.
+// 1 m away must come out 1 m away. Then the camera is lost (unplugged past
+// the reconnect window) and the capture stopped and started again in the
+// same process.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -35,10 +38,52 @@ struct DepthListener final : hal::DepthDataListener {
     if (hal::is_valid(p)) centre_z_m.push_back(p.z_m);
   }
   std::mutex mutex;
+  long count() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return frames;
+  }
   long frames = 0;
   double valid_share = 0.0;
   std::vector<float> centre_z_m;
 };
+
+// Waits (bounded) for `done`; true when it happened.
+template <typename F>
+bool wait_for(F done, int timeout_ms) {
+  for (int waited_ms = 0; waited_ms < timeout_ms; waited_ms += 20) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return done();
+}
+
+// The camera lost while capturing, the capture stopped, started while the
+// camera is away (DISCONNECTED, as royale), and started again once it is
+// back: frames flow, no restart needed.
+void check_stop_and_start_after_lost(pico_flexx::UsbDepthCamera& camera,
+                                     sim_hal::EmulatedPicoFlexx& emulated,
+                                     DepthListener& listener) {
+  assert_int_equal(camera.start_capture(), hal::CameraStatus::kSuccess);
+  const long before = listener.count();
+  assert_true(wait_for([&] { return listener.count() >= before + 2; }, 20000));
+  emulated.unplug();
+  assert_true(
+      wait_for([&] { return camera.usb().state() == pico_flexx::CameraState::kLost; }, 5000));
+  assert_false(camera.is_connected());
+  assert_true(camera.is_capturing());  // wanted, and being brought back
+  assert_int_equal(camera.stop_capture(), hal::CameraStatus::kSuccess);
+  assert_false(camera.is_capturing());
+  assert_int_equal(camera.start_capture(), hal::CameraStatus::kDisconnected);
+  std::string error;
+  assert_true(emulated.replug(&error));
+  assert_true(wait_for([&] { return camera.is_connected(); }, 5000));
+  assert_int_equal(camera.start_capture(), hal::CameraStatus::kSuccess);
+  const long again = listener.count();
+  assert_true(wait_for([&] { return listener.count() >= again + 3; }, 20000));
+  assert_int_equal(camera.stop_capture(), hal::CameraStatus::kSuccess);
+  std::printf("lost, stopped and started again: %ld depth frames after the replug\n",
+              listener.count() - again);
+}
 
 void test_wall_through_usb(void**) {
   hal::MonotonicClock clock;
@@ -59,6 +104,7 @@ void test_wall_through_usb(void**) {
 
   pico_flexx::UsbCameraConfig usb;
   usb.use_case_index = 0;  // MODE_9_5FPS_2000: two frequencies, unwrapped
+  usb.reconnect_window_ms = 500;
   pico_flexx::UsbDepthCamera camera(usb, pico_flexx::PipelineConfig{}, clock);
   const hal::CameraStatus init = camera.initialize();
   if (init != hal::CameraStatus::kSuccess) fail_msg("initialize: %s", camera.error().c_str());
@@ -82,7 +128,7 @@ void test_wall_through_usb(void**) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   assert_int_equal(camera.stop_capture(), hal::CameraStatus::kSuccess);
-  std::lock_guard<std::mutex> lock(listener.mutex);
+  std::unique_lock<std::mutex> lock(listener.mutex);
   std::printf("wall at 1 m through USB: %ld depth frames, %.1f %% valid, %zu centre depths\n",
               listener.frames, 100.0 * listener.valid_share, listener.centre_z_m.size());
   assert_true(listener.frames >= 8);
@@ -94,6 +140,8 @@ void test_wall_through_usb(void**) {
   const pico_flexx::UsbCounters c = camera.usb().counters();
   assert_int_equal(c.assembly.dropped(), 0);
   assert_int_equal(camera.pipeline()->counts().frames_dropped, 0);
+  lock.unlock();
+  check_stop_and_start_after_lost(camera, *emulated, listener);
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
 // The Pico Flexx USB protocol's codecs and the frame assembler, pure code
 // with no USB: check values, round trips, refusals, and every way a frame
 // is dropped. Runs on the robot's build too (under qemu-arm).
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <vector>
 
 #include "cmocka_cpp.hpp"
+#include "hal/use_case.hpp"
 #include "pico_flexx/frame_assembler.hpp"
 #include "pico_flexx/usb_protocol.hpp"
 
@@ -81,18 +83,21 @@ void test_identity_round_trip(void**) {
   assert_false(parse_identity(bytes, sizeof bytes - 1, &back));
 }
 
-// A MODE_5 frame on the wire: header, then a payload of a known pattern.
+// A frame on the wire (MODE_5 unless `use_case_index` says otherwise):
+// header, then a payload of a known pattern.
 struct WireFrame {
   std::vector<std::uint8_t> bytes;
 };
-WireFrame make_frame(std::uint32_t sequence) {
+WireFrame make_frame(std::uint32_t sequence, std::uint8_t use_case_index = 5) {
+  std::size_t use_case_count = 0;
+  const std::uint8_t images = hal::use_cases(&use_case_count)[use_case_index].raw_frames;
   FrameHeader h;
   h.sequence = sequence;
-  h.use_case_index = 5;
-  h.raw_images = 5;
+  h.use_case_index = use_case_index;
+  h.raw_images = images;
   h.width_px = tof::kWidthPx;
   h.height_px = tof::kHeightPx;
-  h.payload_bytes = static_cast<std::uint32_t>(5 * tof::kPixels * 2);
+  h.payload_bytes = static_cast<std::uint32_t>(images * tof::kPixels * 2);
   h.exposure_us = 400;
   h.temperature_centi_c = 3650;
   WireFrame f;
@@ -165,10 +170,11 @@ void test_assembler_drops(void**) {
   // Out of order: an earlier sequence number than the last handed on.
   assert_int_equal(feed(&a, make_frame(9), 65536), AssemblyEvent::kDropped);
   assert_int_equal(a.counts().frames_out_of_order, 1);
-  // A stray transfer where a header should be.
+  // A stray transfer where a header should be: not a frame, counted apart.
   std::uint8_t junk[1024] = {};
-  assert_int_equal(a.on_transfer(junk, sizeof junk, 65536), AssemblyEvent::kDropped);
-  assert_int_equal(a.counts().frames_bad_header, 1);
+  assert_int_equal(a.on_transfer(junk, sizeof junk, 65536), AssemblyEvent::kDiscarded);
+  assert_int_equal(a.counts().frames_bad_header, 0);
+  assert_int_equal(a.counts().transfers_discarded, 1);
   assert_int_equal(a.counts().last_header_error, ParseStatus::kBadMagic);
   // A frame whose end was lost, then the next frame's header: the first is
   // short, the second arrives.
@@ -182,13 +188,65 @@ void test_assembler_drops(void**) {
   put_u32(&wrong.bytes[60], crc32(wrong.bytes.data(), 60));
   assert_int_equal(a.on_transfer(wrong.bytes.data(), 65536, 65536), AssemblyEvent::kDropped);
   assert_int_equal(a.counts().last_header_error, ParseStatus::kBadSize);
-  // The rest of that frame's transfers are dropped too (no header).
+  assert_int_equal(a.counts().frames_bad_header, 1);
+  // The rest of that frame's transfers are skipped, not counted again.
   assert_int_equal(
       feed(&a, WireFrame{std::vector<std::uint8_t>(wrong.bytes.begin() + 65536, wrong.bytes.end())},
            65536),
-      AssemblyEvent::kDropped);
+      AssemblyEvent::kNone);
+  assert_int_equal(a.counts().frames_bad_header, 1);
+  assert_int_equal(a.counts().transfers_discarded, 1);
   // After all that, good frames still arrive.
   assert_int_equal(feed(&a, make_frame(16), 65536), AssemblyEvent::kFrameReady);
+}
+
+// Each refused frame counts once, however many transfers it spans: three
+// MODE_9 frames (11 transfers of 64 KB each) with a bad header CRC, three
+// with a bad payload, three whose end overran. The frames refused are
+// among the frames missed, never more; stray transfers are neither.
+void test_assembler_counts_once_per_frame(void**) {
+  constexpr std::uint8_t kMode9 = 3;  // MODE_9_25FPS_450
+  constexpr std::size_t kTransfer = 65536;
+  auto raw = std::make_unique<tof::RawFrame>();
+  FrameAssembler a(raw.get());
+  std::uint32_t sequence = 100;
+  assert_int_equal(feed(&a, make_frame(sequence++, kMode9), kTransfer), AssemblyEvent::kFrameReady);
+  const std::size_t transfers_per_frame =
+      (make_frame(0, kMode9).bytes.size() + kTransfer - 1) / kTransfer;
+  assert_int_equal(transfers_per_frame, 11);
+  for (int i = 0; i < 3; ++i) {
+    WireFrame bad_crc = make_frame(sequence++, kMode9);
+    bad_crc.bytes[40] ^= 0x01;  // in the header, after its CRC was computed
+    assert_int_equal(feed(&a, bad_crc, kTransfer), AssemblyEvent::kDropped);
+  }
+  assert_int_equal(a.counts().frames_bad_header, 3);
+  assert_int_equal(a.counts().last_header_error, ParseStatus::kBadCrc);
+  for (int i = 0; i < 3; ++i) {
+    WireFrame corrupt = make_frame(sequence++, kMode9);
+    corrupt.bytes[300000] ^= 0x01;
+    assert_int_equal(feed(&a, corrupt, kTransfer), AssemblyEvent::kDropped);
+  }
+  assert_int_equal(a.counts().frames_corrupt, 3);
+  // Overrun: a MODE_5 header on a MODE_9 frame's bytes, which run past it.
+  for (int i = 0; i < 3; ++i) {
+    WireFrame longer = make_frame(sequence, kMode9);
+    const WireFrame mode5 = make_frame(sequence++);
+    std::copy(mode5.bytes.begin(), mode5.bytes.begin() + kFrameHeaderBytes, longer.bytes.begin());
+    assert_int_equal(feed(&a, longer, kTransfer), AssemblyEvent::kDropped);
+  }
+  assert_int_equal(a.counts().frames_overrun, 3);
+  // Stray transfers between frames, a full one and a short one.
+  std::vector<std::uint8_t> junk(kTransfer, 0x07);
+  assert_int_equal(a.on_transfer(junk.data(), kTransfer, kTransfer), AssemblyEvent::kDiscarded);
+  assert_int_equal(a.on_transfer(junk.data(), 100, kTransfer), AssemblyEvent::kDiscarded);
+  assert_int_equal(feed(&a, make_frame(sequence++, kMode9), kTransfer), AssemblyEvent::kFrameReady);
+  const AssemblerCounts& c = a.counts();
+  assert_int_equal(c.dropped(), 9);
+  assert_int_equal(c.transfers_discarded, 2);
+  assert_int_equal(c.frames_missed, 9);
+  assert_true(c.dropped() <= c.frames_missed);
+  assert_int_equal(c.frames_complete, 2);
+  assert_int_equal(c.transfers, 11 * 11 + 2);
 }
 
 }  // namespace
@@ -201,6 +259,7 @@ int main() {
       cmocka_unit_test(test_identity_round_trip),
       cmocka_unit_test(test_assembler_good_frames),
       cmocka_unit_test(test_assembler_drops),
+      cmocka_unit_test(test_assembler_counts_once_per_frame),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -16,7 +16,7 @@
 // FIFO overflows: its sequence number is skipped.
 //
 // Faults on demand: unplug and replug, a halted stream endpoint, corrupt
-// and short frames, commands that are never answered, and a slow host
+// and short frames, frames with a bad header, commands that are never answered, and a slow host
 // (replies held back).
 #include <cstdint>
 #include <memory>
@@ -55,6 +55,7 @@ struct EmulatorCounts {
   std::uint64_t frames_dropped_no_transfer = 0;  // due with no stream transfer waiting
   std::uint64_t frames_corrupted = 0;
   std::uint64_t frames_shortened = 0;
+  std::uint64_t headers_corrupted = 0;
   std::uint64_t urbs_submitted = 0;
   std::uint64_t urbs_reaped = 0;
   std::uint64_t urbs_discarded = 0;
@@ -95,6 +96,11 @@ class EmulatedPicoFlexx {
   // was computed / cut off after half their bytes.
   void corrupt_next_frames(int frames);
   void shorten_next_frames(int frames);
+  // The next `frames` frames: one header byte flipped after the header's
+  // CRC was computed (the magic kept), so the host refuses the whole frame.
+  void corrupt_next_headers(int frames);
+  // Cancels the corrupt, short and bad-header frames still to come.
+  void clear_frame_faults();
   // The next `commands` commands are taken and never answered.
   void mute_next_commands(int commands);
   // Replies wait this long before they are sent (0: none).

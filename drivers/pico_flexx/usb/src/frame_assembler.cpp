@@ -11,6 +11,17 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
 static_assert(kMaxRawPayloadBytes() == tof::kMaxRawImages * tof::kPixels * sizeof(std::uint16_t),
               "a MODE_9 payload fills the raw frame's buffer exactly");
 
+namespace {
+
+// Whether a transfer begins with the frame header's magic. 12-bit samples
+// never form it at a transfer's start (their odd bytes are at most 0x0F),
+// so this marks the start of a frame, whatever state its header is in.
+bool starts_with_magic(const std::uint8_t* data, std::size_t length) {
+  return length >= sizeof(std::uint32_t) && get_u32(data) == kFrameMagic;
+}
+
+}  // namespace
+
 const char* to_string(AssemblyEvent event) {
   switch (event) {
     case AssemblyEvent::kNone:
@@ -19,12 +30,14 @@ const char* to_string(AssemblyEvent event) {
       return "FRAME_READY";
     case AssemblyEvent::kDropped:
       return "DROPPED";
+    case AssemblyEvent::kDiscarded:
+      return "DISCARDED";
   }
   return "UNKNOWN_ASSEMBLY_EVENT";
 }
 
 void FrameAssembler::restart() {
-  in_frame_ = false;
+  phase_ = Phase::kBetweenFrames;
   received_bytes_ = 0;
   have_sequence_ = false;
 }
@@ -36,23 +49,30 @@ AssemblyEvent FrameAssembler::on_transfer(const std::uint8_t* data, std::size_t 
     // The end of a frame that filled its last transfer exactly; in the
     // middle of a frame it cuts the frame short.
     ++counts_.zero_length_transfers;
-    if (!in_frame_) return AssemblyEvent::kNone;
-    in_frame_ = false;
-    return drop(&counts_.frames_short, received_bytes_);
+    const Phase was = phase_;
+    phase_ = Phase::kBetweenFrames;
+    if (was == Phase::kInFrame) return drop(&counts_.frames_short, received_bytes_);
+    return AssemblyEvent::kNone;
   }
-  // A header can start a transfer in the middle of a frame only if the
-  // frame's end was lost; 12-bit samples never contain the magic's bytes,
-  // so a valid header there means the frame before was cut short.
-  if (in_frame_ && length >= kFrameHeaderBytes && get_u32(data) == kFrameMagic) {
-    FrameHeader probe;
-    if (parse_frame_header(data, length, &probe) == ParseStatus::kOk) {
-      in_frame_ = false;
-      drop(&counts_.frames_short, received_bytes_);
-      start_frame(data, length, capacity);
-      return AssemblyEvent::kDropped;
-    }
+  // A frame's start inside another frame means that frame lost its end.
+  if (phase_ != Phase::kBetweenFrames && starts_with_magic(data, length)) {
+    const bool cut_short = phase_ == Phase::kInFrame;
+    const std::size_t cut_bytes = received_bytes_;
+    phase_ = Phase::kBetweenFrames;
+    const AssemblyEvent next = start_frame(data, length, capacity);
+    if (!cut_short) return next;
+    drop(&counts_.frames_short, cut_bytes);
+    return next == AssemblyEvent::kFrameReady ? next : AssemblyEvent::kDropped;
   }
-  return in_frame_ ? continue_frame(data, length, capacity) : start_frame(data, length, capacity);
+  switch (phase_) {
+    case Phase::kInFrame:
+      return continue_frame(data, length, capacity);
+    case Phase::kSkippingFrame:
+      return skip_transfer(data, length, capacity);
+    case Phase::kBetweenFrames:
+      break;
+  }
+  return start_frame(data, length, capacity);
 }
 
 AssemblyEvent FrameAssembler::start_frame(const std::uint8_t* data, std::size_t length,
@@ -61,10 +81,16 @@ AssemblyEvent FrameAssembler::start_frame(const std::uint8_t* data, std::size_t 
   const ParseStatus s = parse_frame_header(data, length, &h);
   if (s != ParseStatus::kOk) {
     counts_.last_header_error = s;
-    return drop(&counts_.frames_bad_header, length);
+    if (!starts_with_magic(data, length)) {
+      // No frame starts here: stray bytes, not a frame lost.
+      ++counts_.transfers_discarded;
+      counts_.bytes_discarded += length;
+      return AssemblyEvent::kDiscarded;
+    }
+    return drop_and_skip(&counts_.frames_bad_header, length, length, capacity);
   }
   header_ = h;
-  in_frame_ = true;
+  phase_ = Phase::kInFrame;
   received_bytes_ = 0;
   return continue_frame(data + kFrameHeaderBytes, length - kFrameHeaderBytes,
                         capacity - kFrameHeaderBytes);
@@ -74,22 +100,29 @@ AssemblyEvent FrameAssembler::continue_frame(const std::uint8_t* data, std::size
                                              std::size_t capacity) {
   const std::size_t remaining = header_.payload_bytes - received_bytes_;
   if (length > remaining) {
-    in_frame_ = false;
-    return drop(&counts_.frames_overrun, received_bytes_ + length);
+    return drop_and_skip(&counts_.frames_overrun, received_bytes_ + length, length, capacity);
   }
   std::memcpy(payload_bytes() + received_bytes_, data, length);
   received_bytes_ += length;
   if (received_bytes_ == header_.payload_bytes) return finish_frame();
   if (length < capacity) {
     // A short transfer before the frame's size: the camera ended it early.
-    in_frame_ = false;
+    phase_ = Phase::kBetweenFrames;
     return drop(&counts_.frames_short, received_bytes_);
   }
   return AssemblyEvent::kNone;
 }
 
+AssemblyEvent FrameAssembler::skip_transfer(const std::uint8_t*, std::size_t length,
+                                            std::size_t capacity) {
+  // The refused frame was counted at its start; its end is a short transfer.
+  counts_.bytes_discarded += length;
+  if (length < capacity) phase_ = Phase::kBetweenFrames;
+  return AssemblyEvent::kNone;
+}
+
 AssemblyEvent FrameAssembler::finish_frame() {
-  in_frame_ = false;
+  phase_ = Phase::kBetweenFrames;
   if (fletcher32(payload_bytes(), header_.payload_bytes) != header_.payload_checksum) {
     return drop(&counts_.frames_corrupt, header_.payload_bytes);
   }
@@ -117,6 +150,12 @@ AssemblyEvent FrameAssembler::drop(std::uint64_t* counter, std::size_t bytes) {
   ++*counter;
   counts_.bytes_discarded += bytes;
   return AssemblyEvent::kDropped;
+}
+
+AssemblyEvent FrameAssembler::drop_and_skip(std::uint64_t* counter, std::size_t bytes,
+                                            std::size_t length, std::size_t capacity) {
+  phase_ = length < capacity ? Phase::kBetweenFrames : Phase::kSkippingFrame;
+  return drop(counter, bytes);
 }
 
 }  // namespace pico_flexx

@@ -91,10 +91,32 @@ const char* to_string(LostReason reason) {
       return "STALLED";
     case LostReason::kSilent:
       return "SILENT";
+    case LostReason::kTransferErrors:
+      return "TRANSFER_ERRORS";
     case LostReason::kReinitFailed:
       return "REINIT_FAILED";
   }
   return "UNKNOWN_LOST_REASON";
+}
+
+const char* to_string(StreamHealth health) {
+  switch (health) {
+    case StreamHealth::kNotStreaming:
+      return "NOT_STREAMING";
+    case StreamHealth::kOk:
+      return "OK";
+    case StreamHealth::kCorruptStream:
+      return "CORRUPT_STREAM";
+    case StreamHealth::kSilent:
+      return "SILENT";
+    case StreamHealth::kStalled:
+      return "STALLED";
+    case StreamHealth::kTransferErrors:
+      return "TRANSFER_ERRORS";
+    case StreamHealth::kNoDevice:
+      return "NO_DEVICE";
+  }
+  return "UNKNOWN_STREAM_HEALTH";
 }
 
 UsbCamera::UsbCamera(const UsbCameraConfig& config, const hal::Clock& clock)
@@ -265,9 +287,8 @@ UsbStatus UsbCamera::open() {
 }
 
 void UsbCamera::close() {
-  if (state_.load() == CameraState::kStreaming || state_.load() == CameraState::kRecovering) {
-    (void)stop_streaming();
-  }
+  // Also when lost: a later open() must not find a capture still wanted.
+  if (want_streaming_.load()) (void)stop_streaming();
   quit_ = true;
   if (event_thread_.joinable()) event_thread_.join();
   std::lock_guard<std::mutex> lock(command_mutex_);
@@ -276,6 +297,7 @@ void UsbCamera::close() {
   wait_drained(1000000);
   close_handle();
   state_ = CameraState::kClosed;
+  health_ = StreamHealth::kNotStreaming;
 }
 
 UsbStatus UsbCamera::apply_settings() {

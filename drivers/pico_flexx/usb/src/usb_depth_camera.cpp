@@ -143,9 +143,9 @@ bool UsbDepthCamera::is_connected() const {
 }
 
 bool UsbDepthCamera::is_capturing() const {
-  const CameraState s = usb_.state();
-  return s == CameraState::kStreaming || s == CameraState::kRecovering ||
-         s == CameraState::kWaitingForDevice;
+  // Also while the driver brings a lost or unplugged camera back: the
+  // capture stands until stop_capture(), which must then be let through.
+  return usb_.state() != CameraState::kClosed && usb_.capture_requested();
 }
 
 void UsbDepthCamera::on_raw_frame(const RawFrameInfo&, const tof::RawFrame& frame) {

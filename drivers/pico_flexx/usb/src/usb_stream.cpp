@@ -1,6 +1,6 @@
 // The Pico Flexx USB driver's stream: the pool of bulk transfers, frame
 // reassembly and delivery, and the event thread that watches for an
-// unplugged, stalled or silent camera and brings it back.
+// unplugged, stalled, silent or corrupt stream and brings the camera back.
 #include <libusb.h>
 
 #include <sys/time.h>
@@ -18,6 +18,26 @@ constexpr long kEventRoundUs = 10000;
 constexpr std::int64_t kDrainTimeoutUs = 1000000;
 // Silence is at least this many frame periods of the use case.
 constexpr std::int64_t kSilentPeriods = 4;
+
+std::int64_t ms_to_us(int ms) {
+  return static_cast<std::int64_t>(ms) * 1000;
+}
+
+// The health the ladder reports while it climbs for `cause`.
+StreamHealth ladder_health(LostReason cause) {
+  switch (cause) {
+    case LostReason::kStalled:
+      return StreamHealth::kStalled;
+    case LostReason::kTransferErrors:
+      return StreamHealth::kTransferErrors;
+    case LostReason::kNone:
+    case LostReason::kUnplugged:
+    case LostReason::kSilent:
+    case LostReason::kReinitFailed:
+      break;
+  }
+  return StreamHealth::kSilent;
+}
 
 }  // namespace
 
@@ -47,6 +67,7 @@ void UsbCamera::cancel_all() {
 }
 
 bool UsbCamera::wait_drained(std::int64_t timeout_us) {
+  // Bounded by the deadline: one round of events per pass.
   const std::int64_t deadline_us = clock_.now_us() + timeout_us;
   while (in_flight_.load() > 0 && clock_.now_us() < deadline_us) {
     timeval tv{0, kEventRoundUs};
@@ -63,30 +84,9 @@ void UsbCamera::on_stream_transfer(libusb_transfer* t) {
   --in_flight_;
   const std::int64_t now_us = clock_.now_us();
   switch (t->status) {
-    case LIBUSB_TRANSFER_COMPLETED: {
-      const AssemblyEvent e =
-          assembler_.on_transfer(t->buffer, static_cast<std::size_t>(t->actual_length),
-                                 static_cast<std::size_t>(t->length));
-      if (e == AssemblyEvent::kFrameReady && listener_ != nullptr) {
-        RawFrameInfo info;
-        info.sequence = assembler_.last_header().sequence;
-        info.use_case_index = assembler_.last_header().use_case_index;
-        info.last_transfer_us = now_us;
-        frame_->capture_time_us = now_us;
-        listener_->on_raw_frame(info, *frame_);
-        last_frame_us_ = now_us;
-        rung_ = 0;
-      }
-      std::lock_guard<std::mutex> lock(counters_mutex_);
-      ++counters_.transfers_completed;
-      counters_.bytes_received += static_cast<std::uint64_t>(t->actual_length);
-      counters_.assembly = assembler_.counts();
-      if (e == AssemblyEvent::kFrameReady) {
-        ++counters_.frames_delivered;
-        counters_.last_delivery_us = clock_.now_us() - now_us;
-      }
+    case LIBUSB_TRANSFER_COMPLETED:
+      note_stream_completion(t, now_us);
       break;
-    }
     case LIBUSB_TRANSFER_CANCELLED: {
       std::lock_guard<std::mutex> lock(counters_mutex_);
       ++counters_.transfers_cancelled;
@@ -125,22 +125,72 @@ void UsbCamera::on_stream_transfer(libusb_transfer* t) {
   ++counters_.transfers_submitted;
 }
 
+void UsbCamera::note_stream_completion(const libusb_transfer* t, std::int64_t now_us) {
+  // Bytes of any kind say the camera is alive, good frames or not.
+  if (t->actual_length > 0) {
+    last_bytes_us_ = now_us;
+    bytes_seen_ = true;
+  }
+  const AssemblyEvent e = assembler_.on_transfer(
+      t->buffer, static_cast<std::size_t>(t->actual_length), static_cast<std::size_t>(t->length));
+  if (e == AssemblyEvent::kFrameReady) {
+    if (listener_ != nullptr) {
+      RawFrameInfo info;
+      info.sequence = assembler_.last_header().sequence;
+      info.use_case_index = assembler_.last_header().use_case_index;
+      info.last_transfer_us = now_us;
+      frame_->capture_time_us = now_us;
+      listener_->on_raw_frame(info, *frame_);
+    }
+    last_frame_us_ = now_us;
+    consecutive_bad_frames_ = 0;
+    rung_ = 0;
+  } else if (e == AssemblyEvent::kDropped) {
+    ++consecutive_bad_frames_;
+  }
+  std::lock_guard<std::mutex> lock(counters_mutex_);
+  ++counters_.transfers_completed;
+  counters_.bytes_received += static_cast<std::uint64_t>(t->actual_length);
+  counters_.assembly = assembler_.counts();
+  counters_.consecutive_bad_frames = consecutive_bad_frames_;
+  if (e == AssemblyEvent::kFrameReady) {
+    ++counters_.frames_delivered;
+    counters_.last_delivery_us = clock_.now_us() - now_us;
+  }
+}
+
+UsbStatus UsbCamera::reacquire_for_start() {
+  // The camera was lost or unplugged and the capture stopped: find it now
+  // rather than wait for the event thread's next search.
+  if (!stop_transfers()) return UsbStatus::kIoError;
+  close_handle();
+  const UsbStatus s = reopen_camera();
+  if (s != UsbStatus::kOk) return s == UsbStatus::kNotFound ? UsbStatus::kNoDevice : s;
+  std::lock_guard<std::mutex> lock(counters_mutex_);
+  ++counters_.reacquisitions;
+  return UsbStatus::kOk;
+}
+
 UsbStatus UsbCamera::start_streaming(RawFrameListener* listener) {
   std::lock_guard<std::mutex> lock(command_mutex_);
-  if (handle_ == nullptr) return UsbStatus::kNotOpen;
+  if (state_.load() == CameraState::kClosed) return UsbStatus::kNotOpen;
   if (want_streaming_) return UsbStatus::kStreaming;
+  const CameraState state = state_.load();
+  if (state == CameraState::kLost || state == CameraState::kWaitingForDevice) {
+    const UsbStatus s = reacquire_for_start();
+    if (s != UsbStatus::kOk) return s;
+    lost_reason_ = LostReason::kNone;
+    state_ = CameraState::kOpen;
+  }
+  if (handle_ == nullptr) return UsbStatus::kNotOpen;
   listener_ = listener;
   assembler_.restart();
   ReplyView reply;
   UsbStatus s =
       command_locked(Command::kStartStream, nullptr, 0, &reply, config_.command_timeout_ms);
   if (s != UsbStatus::kOk) return s;
-  rung_ = 0;
-  last_frame_us_ = clock_.now_us();
-  stalled_pending_ = failed_pending_ = false;
-  resubmit_ = true;
   want_streaming_ = true;
-  s = submit_all();
+  s = resume_stream(clock_.now_us());
   state_ = CameraState::kStreaming;
   return s;
 }
@@ -149,12 +199,13 @@ UsbStatus UsbCamera::stop_streaming() {
   std::lock_guard<std::mutex> lock(command_mutex_);
   if (!want_streaming_) return UsbStatus::kNotStreaming;
   want_streaming_ = false;
-  resubmit_ = false;
-  cancel_all();
-  wait_drained(kDrainTimeoutUs);
+  (void)stop_transfers();
   const CameraState was = state_.load();
+  // Lost or unplugged: nothing to tell the camera. The search goes on, and
+  // a camera found again is left open, not streaming.
   if (was == CameraState::kLost || was == CameraState::kWaitingForDevice) return UsbStatus::kOk;
   state_ = CameraState::kOpen;
+  health_ = StreamHealth::kNotStreaming;
   ReplyView reply;
   return command_locked(Command::kStopStream, nullptr, 0, &reply, config_.command_timeout_ms);
 }
@@ -173,47 +224,90 @@ void UsbCamera::event_loop() {
 }
 
 void UsbCamera::supervise(std::int64_t now_us) {
-  const CameraState state = state_.load();
-  if (state == CameraState::kClosed || state == CameraState::kLost) return;
-  if (state == CameraState::kWaitingForDevice) {
-    try_reconnect(now_us);
-    return;
+  switch (state_.load()) {
+    case CameraState::kClosed:
+      return;
+    case CameraState::kWaitingForDevice:
+      try_reconnect(now_us);
+      return;
+    case CameraState::kLost:
+      supervise_lost(now_us);
+      return;
+    case CameraState::kOpen:
+    case CameraState::kStreaming:
+    case CameraState::kRecovering:
+      supervise_stream(now_us);
+      return;
   }
+}
+
+void UsbCamera::supervise_stream(std::int64_t now_us) {
   if (gone_pending_.exchange(false) || hotplug_left_.exchange(false)) {
     handle_unplug(now_us);
     return;
   }
   hotplug_arrived_ = false;  // another camera; not ours while this one works
   if (!want_streaming_) return;
-  const bool stalled = stalled_pending_.exchange(false);
-  const bool failed = failed_pending_.exchange(false);
-  if (stalled || failed) {
-    climb_ladder(now_us, stalled);
+  if (stalled_pending_.exchange(false)) {
+    climb_ladder(now_us, LostReason::kStalled);
     return;
   }
+  if (failed_pending_.exchange(false)) {
+    climb_ladder(now_us, LostReason::kTransferErrors);
+    return;
+  }
+  check_stream_liveness(now_us);
+}
+
+std::int64_t UsbCamera::silence_window_us() const {
   std::size_t count = 0;
   const std::int64_t period_us =
       hal::frame_period_us(hal::use_cases(&count)[config_.use_case_index]);
-  std::int64_t silence_us = static_cast<std::int64_t>(config_.silence_ms) * 1000;
-  if (silence_us < kSilentPeriods * period_us) silence_us = kSilentPeriods * period_us;
-  if (now_us - last_frame_us_ > silence_us) {
+  const std::int64_t silence_us = ms_to_us(config_.silence_ms);
+  return silence_us > kSilentPeriods * period_us ? silence_us : kSilentPeriods * period_us;
+}
+
+void UsbCamera::check_stream_liveness(std::int64_t now_us) {
+  const std::int64_t window_us = silence_window_us();
+  if (now_us - last_bytes_us_.load() > window_us) {
+    // Nothing at all from the camera: the ladder may bring it back.
     {
       std::lock_guard<std::mutex> lock(counters_mutex_);
       ++counters_.silences;
     }
-    climb_ladder(now_us, false);
+    climb_ladder(now_us, LostReason::kSilent);
+    return;
   }
+  if (now_us - last_frame_us_.load() > window_us) {
+    // Bytes, but no frame passes: the camera is there and streaming, so
+    // resetting it would only add silence. Reported, and left alone.
+    report_corrupt_stream();
+    return;
+  }
+  // After a rung or a restart, the ladder's reason stands until bytes come.
+  if (bytes_seen_.load()) health_ = StreamHealth::kOk;
 }
 
-void UsbCamera::climb_ladder(std::int64_t now_us, bool stalled) {
-  state_ = CameraState::kRecovering;
+void UsbCamera::report_corrupt_stream() {
+  if (health_.exchange(StreamHealth::kCorruptStream) == StreamHealth::kCorruptStream) return;
+  std::lock_guard<std::mutex> lock(counters_mutex_);
+  ++counters_.corrupt_streams;
+}
+
+bool UsbCamera::stop_transfers() {
   resubmit_ = false;
   cancel_all();
-  wait_drained(kDrainTimeoutUs);
+  return wait_drained(kDrainTimeoutUs);
+}
+
+void UsbCamera::climb_ladder(std::int64_t now_us, LostReason cause) {
+  state_ = CameraState::kRecovering;
+  health_ = ladder_health(cause);
+  (void)stop_transfers();
   if (gone_pending_.load()) return;  // unplugged meanwhile: the next round handles it
   // The reason the camera is lost if the ladder runs out: what sent it up
   // the first rung, unless a rung itself failed on the way.
-  if (rung_ == 0) ladder_reason_ = stalled ? LostReason::kStalled : LostReason::kSilent;
+  if (rung_ == 0) ladder_reason_ = cause;
   ++rung_;
   UsbStatus s = UsbStatus::kOk;
   ReplyView reply;
@@ -255,12 +349,14 @@ void UsbCamera::climb_ladder(std::int64_t now_us, bool stalled) {
       break;
     }
     default:
-      become_lost(ladder_reason_);
+      become_lost(ladder_reason_, now_us);
       return;
   }
   // The partial frame in progress is gone with the cancelled transfers.
   assembler_.abandon_frame();
   last_frame_us_ = now_us;
+  last_bytes_us_ = now_us;
+  bytes_seen_ = false;
   if (s != UsbStatus::kOk) {
     ladder_reason_ = LostReason::kReinitFailed;
     failed_pending_ = true;  // the next round climbs on
@@ -271,11 +367,12 @@ void UsbCamera::climb_ladder(std::int64_t now_us, bool stalled) {
   state_ = CameraState::kStreaming;
 }
 
-void UsbCamera::become_lost(LostReason reason) {
-  resubmit_ = false;
-  cancel_all();
-  wait_drained(kDrainTimeoutUs);
+void UsbCamera::become_lost(LostReason reason, std::int64_t now_us) {
+  (void)stop_transfers();
   lost_reason_ = reason;
+  // The search goes on, backing off from the reconnect poll.
+  reacquire_interval_us_ = ms_to_us(config_.reconnect_poll_ms);
+  next_reacquire_us_ = now_us + reacquire_interval_us_;
   state_ = CameraState::kLost;
 }
 
@@ -285,51 +382,109 @@ void UsbCamera::handle_unplug(std::int64_t now_us) {
     ++counters_.unplugs;
   }
   state_ = CameraState::kWaitingForDevice;
-  resubmit_ = false;
-  cancel_all();
-  wait_drained(kDrainTimeoutUs);
+  health_ = StreamHealth::kNoDevice;
+  (void)stop_transfers();
   close_handle();
   gone_pending_ = false;
   hotplug_left_ = false;
   unplugged_since_us_ = now_us;
-  next_search_us_ = now_us + static_cast<std::int64_t>(config_.reconnect_poll_ms) * 1000;
+  next_search_us_ = now_us + ms_to_us(config_.reconnect_poll_ms);
 }
 
-void UsbCamera::try_reconnect(std::int64_t now_us) {
-  if (now_us - unplugged_since_us_ >
-      static_cast<std::int64_t>(config_.reconnect_window_ms) * 1000) {
-    lost_reason_ = LostReason::kUnplugged;
-    state_ = CameraState::kLost;
-    return;
-  }
-  if (!hotplug_arrived_.exchange(false) && now_us < next_search_us_) return;
-  next_search_us_ = now_us + static_cast<std::int64_t>(config_.reconnect_poll_ms) * 1000;
-  if (find_and_open() != UsbStatus::kOk) return;
+UsbStatus UsbCamera::reopen_camera() {
+  UsbStatus s = find_and_open();
+  if (s == UsbStatus::kOk) s = apply_settings();
   ReplyView reply;
-  UsbStatus s = apply_settings();
   if (s == UsbStatus::kOk && want_streaming_) {
     s = command_locked(Command::kStartStream, nullptr, 0, &reply, config_.command_timeout_ms);
   }
-  if (s != UsbStatus::kOk) {
-    close_handle();
+  if (s != UsbStatus::kOk) close_handle();
+  return s;
+}
+
+UsbStatus UsbCamera::resume_stream(std::int64_t now_us) {
+  gone_pending_ = false;
+  stalled_pending_ = failed_pending_ = false;
+  assembler_.restart();  // a camera powered up or restarted counts from 0
+  rung_ = 0;
+  consecutive_bad_frames_ = 0;
+  last_frame_us_ = now_us;
+  last_bytes_us_ = now_us;
+  bytes_seen_ = false;
+  {
+    std::lock_guard<std::mutex> lock(counters_mutex_);
+    counters_.consecutive_bad_frames = 0;
+  }
+  health_ = want_streaming_ ? StreamHealth::kOk : StreamHealth::kNotStreaming;
+  if (!want_streaming_) return UsbStatus::kOk;
+  resubmit_ = true;
+  const UsbStatus s = submit_all();
+  if (s != UsbStatus::kOk) failed_pending_ = true;  // the ladder takes it from there
+  return s;
+}
+
+void UsbCamera::try_reconnect(std::int64_t now_us) {
+  if (now_us - unplugged_since_us_ > ms_to_us(config_.reconnect_window_ms)) {
+    become_lost(LostReason::kUnplugged, now_us);
     return;
   }
+  if (!hotplug_arrived_.exchange(false) && now_us < next_search_us_) return;
+  next_search_us_ = now_us + ms_to_us(config_.reconnect_poll_ms);
+  if (reopen_camera() != UsbStatus::kOk) return;
   {
     std::lock_guard<std::mutex> lock(counters_mutex_);
     ++counters_.replugs;
   }
-  gone_pending_ = false;
-  stalled_pending_ = failed_pending_ = false;
-  assembler_.restart();  // a camera powered up afresh counts from 0
-  rung_ = 0;
-  if (!want_streaming_) {
-    state_ = CameraState::kOpen;
+  (void)resume_stream(now_us);
+  state_ = want_streaming_ ? CameraState::kStreaming : CameraState::kOpen;
+}
+
+void UsbCamera::supervise_lost(std::int64_t now_us) {
+  if (gone_pending_.exchange(false) || hotplug_left_.exchange(false)) {
+    // Gone while lost: nothing to probe until it is found again.
+    (void)stop_transfers();
+    close_handle();
+    health_ = StreamHealth::kNoDevice;
+  }
+  // A search that restarted the stream succeeds when bytes arrive: a
+  // streaming camera is not lost, whatever its frames look like.
+  if (want_streaming_ && resubmit_ && bytes_seen_.load()) {
+    finish_reacquisition(now_us);
     return;
   }
+  if (!hotplug_arrived_.exchange(false) && now_us < next_reacquire_us_) return;
+  attempt_reacquisition(now_us);
+}
+
+void UsbCamera::attempt_reacquisition(std::int64_t now_us) {
+  {
+    std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.reacquire_attempts;
+  }
+  next_reacquire_us_ = now_us + reacquire_interval_us_;
+  const std::int64_t max_interval_us = ms_to_us(config_.reacquire_max_interval_ms);
+  reacquire_interval_us_ =
+      2 * reacquire_interval_us_ < max_interval_us ? 2 * reacquire_interval_us_ : max_interval_us;
+  // Start afresh: the old handle may be stale (a replug) or its camera hung.
+  if (!stop_transfers()) return;  // transfers still out: try again later
+  close_handle();
+  if (reopen_camera() != UsbStatus::kOk) {
+    health_ = StreamHealth::kNoDevice;
+    return;
+  }
+  (void)resume_stream(now_us);  // a failed submission: the next search retries
+  if (!want_streaming_) finish_reacquisition(now_us);
+}
+
+void UsbCamera::finish_reacquisition(std::int64_t now_us) {
+  {
+    std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.reacquisitions;
+  }
+  lost_reason_ = LostReason::kNone;
   last_frame_us_ = now_us;
-  resubmit_ = true;
-  state_ = CameraState::kStreaming;
-  if (submit_all() != UsbStatus::kOk) failed_pending_ = true;
+  last_bytes_us_ = now_us;
+  state_ = want_streaming_ ? CameraState::kStreaming : CameraState::kOpen;
 }
 
 }  // namespace pico_flexx

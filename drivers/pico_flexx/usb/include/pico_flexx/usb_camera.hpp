@@ -17,10 +17,16 @@
 // - Faults: an unplug (hotplug "left", or transfers ending with no device)
 //   closes the handle and waits for the camera to come back (hotplug
 //   "arrived", or a search every reconnect_poll_ms), then re-initialises
-//   and streams again; past reconnect_window_ms the camera is lost. A
-//   stalled or silent stream climbs a ladder: clear the halt, re-initialise
-//   the camera, reset the device, then lost, with the reason. A good frame
-//   puts the ladder back at its foot.
+//   and streams again. A stalled stream, failing transfers or silence (no
+//   bytes at all) climb a ladder: clear the halt, re-initialise the camera,
+//   reset the device. A camera whose bytes still arrive is never silent:
+//   when none of its frames passes the checks it is reported as a corrupt
+//   stream (StreamHealth), and the ladder is left alone. A good frame puts
+//   the ladder back at its foot.
+// - Lost: past the ladder's top, or unplugged past reconnect_window_ms.
+//   The driver still looks for the camera, with a back-off from
+//   reconnect_poll_ms up to reacquire_max_interval_ms (and at once on
+//   hotplug "arrived"), and streams again once bytes arrive.
 // Robot code: no exceptions, every loop bounded, all memory at construction.
 #include <atomic>
 #include <cstddef>
@@ -67,18 +73,31 @@ enum class CameraState : std::uint8_t {
   kStreaming,
   kRecovering,        // climbing the ladder
   kWaitingForDevice,  // unplugged; looking for it to come back
-  kLost,              // given up (lost_reason())
+  kLost,              // past the ladder or the reconnect window (lost_reason()); still looking
 };
 const char* to_string(CameraState state);
 
 enum class LostReason : std::uint8_t {
   kNone,
-  kUnplugged,     // not back within reconnect_window_ms
-  kStalled,       // the stream kept stalling through the ladder
-  kSilent,        // no frames through the ladder
-  kReinitFailed,  // a rung itself failed (the camera refused its settings, a reset failed)
+  kUnplugged,       // not back within reconnect_window_ms
+  kStalled,         // the stream kept stalling through the ladder
+  kSilent,          // no bytes through the ladder
+  kTransferErrors,  // transfers kept failing through the ladder
+  kReinitFailed,    // a rung itself failed (the camera refused its settings, a reset failed)
 };
 const char* to_string(LostReason reason);
+
+// How the stream is doing, judged over the silence window.
+enum class StreamHealth : std::uint8_t {
+  kNotStreaming,
+  kOk,              // good frames arrive
+  kCorruptStream,   // bytes arrive, but no frame passes the checks
+  kSilent,          // no bytes (the ladder climbs)
+  kStalled,         // the stream endpoint halted (the ladder climbs)
+  kTransferErrors,  // transfers failed (the ladder climbs)
+  kNoDevice,        // unplugged, or lost and not found again yet
+};
+const char* to_string(StreamHealth health);
 
 struct UsbId {
   std::uint16_t vendor_id;
@@ -98,6 +117,8 @@ struct UsbCameraConfig {
   int silence_ms = 500;
   int reconnect_poll_ms = 100;
   int reconnect_window_ms = 10000;
+  // Once lost, searches back off from reconnect_poll_ms, doubling up to this.
+  int reacquire_max_interval_ms = 2000;
   std::uint8_t use_case_index = 5;  // applied at open and after every reconnect
   bool exposure_automatic = false;
   std::uint32_t exposure_us = 0;  // 0: the camera's own
@@ -123,6 +144,10 @@ struct UsbCounters {
   std::uint64_t usb_resets = 0;
   std::uint64_t unplugs = 0;
   std::uint64_t replugs = 0;
+  std::uint64_t corrupt_streams = 0;         // times the stream became CORRUPT_STREAM
+  std::uint64_t consecutive_bad_frames = 0;  // refused since the last good frame
+  std::uint64_t reacquire_attempts = 0;      // searches while lost
+  std::uint64_t reacquisitions = 0;          // lost, then streaming (or open) again
   AssemblerCounts assembly;
   // From the callback of a frame's last transfer to the listener's return
   // (microseconds; the listener's own time included), of the last frame.
@@ -171,6 +196,10 @@ class UsbCamera {
 
   CameraState state() const { return state_.load(); }
   LostReason lost_reason() const { return lost_reason_.load(); }
+  StreamHealth health() const { return health_.load(); }
+  // start_streaming() was called and stop_streaming() not since: frames are
+  // wanted, whether they flow or the driver is bringing the camera back.
+  bool capture_requested() const { return want_streaming_.load(); }
   UsbCounters counters() const;
   ReplyStatus last_refusal() const { return last_refusal_.load(); }
   ParseStatus last_parse_status() const { return last_parse_.load(); }
@@ -186,17 +215,29 @@ class UsbCamera {
   static void stream_callback(libusb_transfer* transfer);
   void on_stream_transfer(libusb_transfer* transfer);
   void event_loop();
+  void note_stream_completion(const libusb_transfer* transfer, std::int64_t now_us);
   void supervise(std::int64_t now_us);
+  void supervise_stream(std::int64_t now_us);
+  std::int64_t silence_window_us() const;
+  void check_stream_liveness(std::int64_t now_us);
+  void report_corrupt_stream();
   UsbStatus find_and_open();
   void close_handle();
   UsbStatus apply_settings();
+  UsbStatus reopen_camera();
+  UsbStatus resume_stream(std::int64_t now_us);
   UsbStatus submit_all();
   void cancel_all();
   bool wait_drained(std::int64_t timeout_us);
-  void climb_ladder(std::int64_t now_us, bool stalled);
-  void become_lost(LostReason reason);
+  bool stop_transfers();
+  void climb_ladder(std::int64_t now_us, LostReason cause);
+  void become_lost(LostReason reason, std::int64_t now_us);
   void handle_unplug(std::int64_t now_us);
   void try_reconnect(std::int64_t now_us);
+  void supervise_lost(std::int64_t now_us);
+  void attempt_reacquisition(std::int64_t now_us);
+  void finish_reacquisition(std::int64_t now_us);
+  UsbStatus reacquire_for_start();
   UsbStatus map_error(int libusb_error);
   UsbStatus command_locked(Command command, const std::uint8_t* payload, std::size_t payload_bytes,
                            ReplyView* reply, int timeout_ms);
@@ -224,16 +265,23 @@ class UsbCamera {
   FrameAssembler assembler_;
   RawFrameListener* listener_ = nullptr;
   std::atomic<bool> resubmit_{false};
-  std::int64_t last_frame_us_ = 0;
+  // When the last good frame and the last bytes of any kind arrived: the
+  // first says whether frames pass, the second whether the camera is alive.
+  std::atomic<std::int64_t> last_frame_us_{0}, last_bytes_us_{0};
+  std::atomic<bool> bytes_seen_{false};  // bytes since the stream was (re)started
+  std::uint64_t consecutive_bad_frames_ = 0;
   int rung_ = 0;
   LostReason ladder_reason_ = LostReason::kNone;
   std::atomic<bool> stalled_pending_{false}, failed_pending_{false}, gone_pending_{false};
   std::int64_t unplugged_since_us_ = 0, next_search_us_ = 0;
+  // While lost: the next search, and the back-off interval after it.
+  std::int64_t next_reacquire_us_ = 0, reacquire_interval_us_ = 0;
 
   std::atomic<bool> hotplug_left_{false}, hotplug_arrived_{false};
   std::atomic<bool> want_streaming_{false};
   std::atomic<CameraState> state_{CameraState::kClosed};
   std::atomic<LostReason> lost_reason_{LostReason::kNone};
+  std::atomic<StreamHealth> health_{StreamHealth::kNotStreaming};
   std::atomic<ReplyStatus> last_refusal_{ReplyStatus::kOk};
   std::atomic<ParseStatus> last_parse_{ParseStatus::kOk};
   std::atomic<Command> last_failed_command_{Command::kIdentify};
