@@ -272,6 +272,15 @@ BENCHMARK_CAPTURE(BM_ScenarioProposed, columbus_approaches_no_faces_wall,
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_0_53, "rack-table2-iss-0-53.json", false)
     ->Unit(benchmark::kMillisecond);
+// The node and Cupola meshes (every 10th frame of their views).
+BENCHMARK_CAPTURE(BM_ScenarioProposed, node1_views, "node1-views.json", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, node2_views, "node2-views.json", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, node3_views, "node3-views.json", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, cupola_views, "cupola-views.json", false)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_0_53_bay_budget_3, "rack-table2-iss-0-53.json",
                   false, 3)
     ->Unit(benchmark::kMillisecond);
