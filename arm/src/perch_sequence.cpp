@@ -78,6 +78,7 @@ int PerchSequence::timeout_ms(PerchState state) const {
 
 void PerchSequence::step(std::int64_t now_us) {
   now_us_ = now_us;
+  note_camera_return();
   if (!have_time_) {
     have_time_ = true;
     status_.state_entered_us = now_us;
@@ -203,9 +204,11 @@ void PerchSequence::fault(FaultCode code, const IoResult& io, const char* detail
                   to_string(status_.state), detail);
   }
   const bool servo_alarm = is_servo(io.device) && (io.error_bits & kServoAlarmBits) != 0;
-  // A robot that no longer knows where it is must not keep an open gripper
-  // out toward a wall: the arm folds (the devices are healthy).
-  const bool fold = code == FaultCode::kPoseLost && !holding_handrail();
+  // A robot that no longer knows where it is, or no longer sees the bar,
+  // must not keep an open gripper out toward a wall: the arm folds (the
+  // devices are healthy).
+  const bool fold =
+      (code == FaultCode::kPoseLost || code == FaultCode::kCameraLost) && !holding_handrail();
   enter(PerchState::kFault);
   enter_safe_state(servo_alarm, fold);
 }
@@ -326,22 +329,40 @@ void PerchSequence::run_entry_action() {
   fault(fault_for_io(io), io, what);
 }
 
-bool PerchSequence::pose_lost() {
+bool PerchSequence::approach_input_lost(std::int64_t since_us, int limit_ms, FaultCode code,
+                                        const char* detail) {
   // Only while flying toward a perch: CLOSING and GRASP_CHECK finish on
-  // the bar (holding it needs no pose), and a calibration for a stow
-  // leads away from the wall anyway.
+  // the bar (holding it needs neither pose nor frames), and a calibration
+  // for a stow leads away from the wall anyway.
   if (status_.state == PerchState::kCalibrating && after_calibration_ != PerchState::kOpening) {
     return false;
   }
-  if (approach_.pose_usable || approach_.pose_unusable_since_us < 0) return false;
-  // Counted from the perch's start at the earliest: a pose missing before
-  // PERCH (a filter still starting) gets the whole allowance.
-  const std::int64_t since = approach_.pose_unusable_since_us > approach_started_us_
-                                 ? approach_.pose_unusable_since_us
-                                 : approach_started_us_;
-  if (now_us_ - since <= config_.pose_lost_ms * 1000LL) return false;
-  fault(FaultCode::kPoseLost, {}, "no usable robot pose during the approach");
+  if (since_us < 0) return false;
+  // Counted from the perch's start at the earliest: an input missing
+  // before PERCH (a filter or a camera still starting) gets the whole
+  // allowance.
+  const std::int64_t since = since_us > approach_started_us_ ? since_us : approach_started_us_;
+  if (now_us_ - since <= limit_ms * 1000LL) return false;
+  fault(code, {}, detail);
   return true;
+}
+
+bool PerchSequence::pose_lost() {
+  if (approach_.pose_usable) return false;
+  return approach_input_lost(approach_.pose_unusable_since_us, config_.pose_lost_ms,
+                             FaultCode::kPoseLost, "no usable robot pose during the approach");
+}
+
+bool PerchSequence::camera_lost() {
+  if (approach_.camera_usable) return false;
+  return approach_input_lost(approach_.camera_late_since_us, config_.camera_lost_ms,
+                             FaultCode::kCameraLost, "no camera frame during the approach");
+}
+
+void PerchSequence::note_camera_return() {
+  const bool late = !approach_.camera_usable;
+  if (camera_was_late_ && !late) camera_back_us_ = now_us_;
+  camera_was_late_ = late;
 }
 
 void PerchSequence::start_stowing() {
@@ -431,7 +452,7 @@ void PerchSequence::advance_state() {
       }
       return;
     case PerchState::kDeploying:
-      if (pose_lost()) return;
+      if (pose_lost() || camera_lost()) return;
       if (!joints_at(config_.geometry.deploy)) return;
       if (g_ok && !g.calibrated) {
         after_calibration_ = PerchState::kOpening;
@@ -441,20 +462,25 @@ void PerchSequence::advance_state() {
       }
       return;
     case PerchState::kCalibrating:
-      if (pose_lost()) return;
+      if (pose_lost() || camera_lost()) return;
       if (g_ok && g.calibrated && !g.moving && in_state_us > 100000) enter(after_calibration_);
       return;
     case PerchState::kOpening:
-      if (pose_lost()) return;
+      if (pose_lost() || camera_lost()) return;
       if (g_ok && g.position_counts <= config_.open_done_counts && !g.moving) {
         enter(PerchState::kGripperOpen);
       }
       return;
     case PerchState::kGripperOpen: {
-      if (pose_lost()) return;
-      const std::int64_t seen = approach_.handrail_seen_us > status_.state_entered_us
-                                    ? approach_.handrail_seen_us
-                                    : status_.state_entered_us;
+      if (pose_lost() || camera_lost()) return;
+      // No frame is not "no handrail": while frames are missing the camera
+      // rule above decides, and the handrail's allowance restarts when
+      // they come back.
+      if (!approach_.camera_usable) return;
+      std::int64_t seen = approach_.handrail_seen_us > status_.state_entered_us
+                              ? approach_.handrail_seen_us
+                              : status_.state_entered_us;
+      if (camera_back_us_ > seen) seen = camera_back_us_;
       if (now_us_ - seen > config_.handrail_lost_ms * 1000LL) {
         fault(FaultCode::kHandrailLost, {}, "no handrail estimate during the approach");
       } else if (approach_.at_target) {

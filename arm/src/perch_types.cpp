@@ -95,6 +95,8 @@ const char* to_string(FaultCode code) {
       return "HANDRAIL_LOST";
     case FaultCode::kPoseLost:
       return "POSE_LOST";
+    case FaultCode::kCameraLost:
+      return "CAMERA_LOST";
     case FaultCode::kGripLost:
       return "GRIP_LOST";
     case FaultCode::kStateTimeout:

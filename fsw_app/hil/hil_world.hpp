@@ -43,6 +43,30 @@ struct HilStats {
   LocalizationScore localization;  // the filter's and the GP's errors
 };
 
+// A camera that stops delivering (--fault camera-silent, camera-lost on
+// the in-process paths): between the camera and its listener, every frame
+// is swallowed until the cut's end, as from a camera that went quiet.
+class CameraCut final : public hal::DepthDataListener {
+ public:
+  CameraCut(const hal::Clock& clock, hal::DepthDataListener& listener)
+      : clock_(clock), listener_(listener) {}
+  void on_new_data(const hal::DepthFrame& frame) override {
+    if (clock_.now_us() < cut_until_us_.load()) {
+      swallowed_.fetch_add(1);
+      return;
+    }
+    listener_.on_new_data(frame);
+  }
+  void cut_until(std::int64_t t_us) { cut_until_us_ = t_us; }
+  std::uint64_t swallowed() const { return swallowed_.load(); }
+
+ private:
+  const hal::Clock& clock_;
+  hal::DepthDataListener& listener_;
+  std::atomic<std::int64_t> cut_until_us_{0};
+  std::atomic<std::uint64_t> swallowed_{0};
+};
+
 class HilWorld final : public sim_hal::CameraPoseSource, public sim_hal::FrameTamper {
  public:
   HilWorld(LcmHub& hub, const sim_hal::Scenario& scenario, const AppConfig& config,

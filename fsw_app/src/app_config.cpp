@@ -237,6 +237,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
                  "max_grasp_attempts",
                  "handrail_lost_ms",
                  "pose_lost_ms",
+                 "camera_lost_ms",
                  "io_failures_to_fault",
                  "timeouts_ms"})) {
       return false;
@@ -264,6 +265,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     s.integer("max_grasp_attempts", &p.max_grasp_attempts, 1, 10);
     s.integer("handrail_lost_ms", &p.handrail_lost_ms, 100, 60000);
     s.integer("pose_lost_ms", &p.pose_lost_ms, 100, 60000);
+    s.integer("camera_lost_ms", &p.camera_lost_ms, 100, 60000);
     s.integer("io_failures_to_fault", &p.io_failures_to_fault, 1, 20);
     if (!s.ok()) return false;
     if (p.grasp_min_counts >= p.grasp_max_counts) {
@@ -337,7 +339,8 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     Section s(*v, "approach", path, error);
     if (!s.only({"standoff_m", "max_speed_mps", "max_rate_rps", "gain_per_s",
                  "integral_gain_per_s2", "brake_mps2", "settle_speed_mps", "position_tolerance_m",
-                 "angle_tolerance_deg", "back_off_m", "settle_cycles", "pose_max_age_ms"})) {
+                 "angle_tolerance_deg", "back_off_m", "settle_cycles", "pose_max_age_ms",
+                 "camera_hold_frames"})) {
       return false;
     }
     ApproachConfig& a = c.approach;
@@ -355,9 +358,12 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     s.number("back_off_m", &a.back_off_m, 0.05, 2.0);
     s.integer("settle_cycles", &a.settle_cycles, 1, 1000);
     s.integer("pose_max_age_ms", &a.pose_max_age_ms, 20, 5000);
+    s.integer("camera_hold_frames", &a.camera_hold_frames, 2, 100);
     if (!s.ok()) return false;
   }
   if (!top.ok()) return false;
+  // The manager's frame-age bound is in frame periods of this use case.
+  c.approach.frame_period_us = hal::frame_period_us(*hal::find_use_case(c.use_case));
   *config = c;
   return true;
 }

@@ -64,6 +64,13 @@ std::optional<int> check_combination(Options* o, bool tasks_given) {
   if (!o->faults.empty() && !o->needs_sim_world()) {
     return usage_error("--fault needs --hal sim with the camera or arm task in this process");
   }
+  for (const auto& fault : o->faults) {
+    const bool camera_fault = fault.first == "camera-silent" || fault.first == "camera-lost";
+    if (camera_fault && !o->runs(kCameraTask)) {
+      return usage_error("--fault " + fault.first +
+                         " acts on the camera: it needs the camera task");
+    }
+  }
   if (o->camera != "raw" && o->camera != "depth" && o->camera != "usb" && o->camera != "royale") {
     return usage_error("--camera is raw, depth, usb or royale");
   }
@@ -141,7 +148,9 @@ void print_usage(std::FILE* out) {
                "                        occlude (1 s), corrupt-frames (5 frames), imu-silent\n"
                "                        (0.5 s), gp-jump (the GP pose 20 cm off from then on),\n"
                "                        handrail-lost (the camera sees nothing from then on),\n"
-               "                        imu-lost (no IMU sample from then on, so no robot pose);\n"
+               "                        imu-lost (no IMU sample from then on, so no robot pose),\n"
+               "                        camera-silent (no frame for 2 s), camera-lost (no frame\n"
+               "                        from then on; over USB the cable is pulled);\n"
                "                        with --camera usb or royale also usb-unplug (the\n"
                "                        cable out for 0.5 s) and usb-stall (the stream\n"
                "                        endpoint halted)\n"
@@ -264,7 +273,7 @@ std::optional<int> parse_options(int argc, char** argv, Options* o) {
       if (name != "servo-silent" && name != "gripper-overcurrent" && name != "occlude" &&
           name != "corrupt-frames" && name != "imu-silent" && name != "gp-jump" &&
           name != "handrail-lost" && name != "imu-lost" && name != "usb-unplug" &&
-          name != "usb-stall") {
+          name != "usb-stall" && name != "camera-silent" && name != "camera-lost") {
         return usage_error("unknown fault \"" + name + "\"");
       }
       o->faults.push_back({name, t});

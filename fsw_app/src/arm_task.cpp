@@ -47,6 +47,8 @@ void ArmTask::cycle() {
     in.backed_off = approach_.backed_off;
     in.pose_usable = approach_.pose_usable;
     in.pose_unusable_since_us = approach_.pose_unusable_since_utime;
+    in.camera_usable = approach_.camera == hrp::approach_status_t::CAMERA_STREAMING;
+    in.camera_late_since_us = approach_.camera_late_since_utime;
   }
   sequence_.set_approach(in);
   sequence_.step(clock_.now_us());

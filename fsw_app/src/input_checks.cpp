@@ -158,6 +158,8 @@ bool check_message(const hrp::approach_status_t& m, InputReject* why) {
   Verdict v(why);
   v.within(m.position_error_m, 0.0, 2.0 * kMaxWorldPosition_m);
   v.within(m.angle_error_rad, 0.0, 4.0);
+  v.count_within(m.camera, hrp::approach_status_t::CAMERA_STREAMING,
+                 hrp::approach_status_t::CAMERA_NOT_SEEN);
   return v.ok();
 }
 

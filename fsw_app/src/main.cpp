@@ -289,9 +289,20 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+#ifdef HRP_WITH_SIM
+  // The in-process cameras' stop for --fault camera-silent / camera-lost
+  // (over USB the cable is pulled instead, for the driver to find again).
+  std::unique_ptr<fsw_app::CameraCut> camera_cut;
+#endif
   if (camera) {
     hal::DepthDataListener* listener = camera_task.get();
     if (frame_publisher) listener = frame_publisher.get();
+#ifdef HRP_WITH_SIM
+    if (world && !frames.hil_usb()) {
+      camera_cut = std::make_unique<fsw_app::CameraCut>(clock, *listener);
+      listener = camera_cut.get();
+    }
+#endif
     if (camera->register_data_listener(listener) != hal::CameraStatus::kSuccess ||
         camera->start_capture() != hal::CameraStatus::kSuccess) {
       std::fprintf(stderr, "fsw_app: the camera would not start capturing\n");
@@ -444,6 +455,15 @@ int main(int argc, char** argv) {
         frames.hil_usb()->unplug_for(clock.now_us(), 500000);
       } else if (f == "usb-stall") {
         frames.hil_usb()->stall_stream();
+      } else if (f == "camera-silent" || f == "camera-lost") {
+        const std::int64_t now_us = clock.now_us();
+        const std::int64_t out_us =
+            f == "camera-silent" ? 2000000 : std::numeric_limits<std::int64_t>::max() - now_us;
+        if (frames.hil_usb()) {
+          frames.hil_usb()->unplug_for(now_us, out_us);
+        } else if (camera_cut) {
+          camera_cut->cut_until(now_us + out_us);
+        }
       }
     }
     if (frames.hil_usb() && !frames.hil_usb()->service(clock.now_us(), &error)) {
@@ -457,8 +477,8 @@ int main(int argc, char** argv) {
         perched = true;
         done = true;
       }
-      // A fault ends the run once the arm has come to rest (POSE_LOST folds
-      // it), so that the summary reports where it ended up.
+      // A fault ends the run once the arm has come to rest (POSE_LOST and
+      // CAMERA_LOST fold it), so that the summary reports where it ended up.
       if (arm.state == hrp::arm_state_t::FAULT) {
         if (fault_s < 0.0) fault_s = t;
         // A few arm cycles first: the state that entered FAULT was read
@@ -508,15 +528,22 @@ int main(int argc, char** argv) {
         1e-3 * static_cast<double>(estimator_task->counters().longest_latency_us);
   }
   if (player) player->stop();
-  if (manager) manager->stop();
+  if (manager) {
+    manager->stop();
+    summary.camera_watch = manager->controller().camera_watch();
+  }
   if (arm_task) arm_task->stop();
   // The driver's state as the run ended, before stopping puts it back to
   // OPEN; the counts after the stop, complete.
   frames.report(&summary);
   const std::string usb_state_at_end = summary.usb ? summary.usb->state : std::string();
+  const std::string usb_health_at_end = summary.usb ? summary.usb->health : std::string();
   if (camera) (void)camera->stop_capture();
   frames.report(&summary);
-  if (summary.usb && !usb_state_at_end.empty()) summary.usb->state = usb_state_at_end;
+  if (summary.usb && !usb_state_at_end.empty()) {
+    summary.usb->state = usb_state_at_end;
+    summary.usb->health = usb_health_at_end;
+  }
   if (estimator_task) {
     estimator_task->stop();
     estimator_task->publish_health();

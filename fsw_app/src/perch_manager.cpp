@@ -1,12 +1,44 @@
 #include "fsw_app/perch_manager.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "fsw_app/msg_convert.hpp"
 
 namespace fsw_app {
 
+const char* to_string(CameraLiveness liveness) {
+  switch (liveness) {
+    case CameraLiveness::kStreaming:
+      return "STREAMING";
+    case CameraLiveness::kLate:
+      return "LATE";
+    case CameraLiveness::kNotSeen:
+      return "NOT_SEEN";
+  }
+  return "UNKNOWN";
+}
+
+namespace {
+
+// The states in which the robot flies on the sightings: toward the
+// stand-off pose and in to the bar. CLOSING and GRASP_CHECK keep station on
+// the pose alone; the back-off flies out along the wall normal.
+bool flies_on_sightings(std::int8_t arm_state) {
+  using A = hrp::arm_state_t;
+  return arm_state == A::DEPLOYING || arm_state == A::CALIBRATING || arm_state == A::OPENING ||
+         arm_state == A::GRIPPER_OPEN;
+}
+
+}  // namespace
+
 void ApproachController::on_estimate(const hrp::handrail_estimate_t& e) {
+  // Any estimate, even "no handrail" or over budget, says a frame came.
+  if (frame_seen_us_ >= 0 && e.capture_utime > frame_seen_us_) {
+    watch_.longest_frame_gap_us =
+        std::max(watch_.longest_frame_gap_us, e.capture_utime - frame_seen_us_);
+  }
+  frame_seen_us_ = std::max(frame_seen_us_, e.capture_utime);
   if (e.state == hrp::handrail_estimate_t::STATE_NH || e.deadline_missed) return;
   handrail_seen_us_ = std::max(handrail_seen_us_, e.capture_utime);
   if (!e.target_in_world) return;
@@ -63,12 +95,44 @@ bool ApproachController::pose_usable(std::int64_t now_us, const hrp::robot_pose_
   return now_us - pose->utime <= cfg_.pose_max_age_ms * 1000LL;
 }
 
+void ApproachController::judge_camera(std::int64_t now_us, std::int64_t dt_us,
+                                      hrp::approach_status_t* status) {
+  const std::int64_t hold_after_us = cfg_.camera_hold_frames * cfg_.frame_period_us;
+  status->frame_seen_utime = frame_seen_us_;
+  if (frame_seen_us_ < 0) {
+    // None yet (a camera starting): late since the manager's first cycle.
+    watch_.liveness = CameraLiveness::kNotSeen;
+    status->camera = hrp::approach_status_t::CAMERA_NOT_SEEN;
+    status->frame_age_ms = -1;
+    if (camera_late_since_us_ < 0) camera_late_since_us_ = now_us;
+    status->camera_late_since_utime = camera_late_since_us_;
+    return;
+  }
+  const std::int64_t age_us = std::max<std::int64_t>(0, now_us - frame_seen_us_);
+  status->frame_age_ms = static_cast<std::int32_t>(
+      std::min<std::int64_t>(age_us / 1000, std::numeric_limits<std::int32_t>::max()));
+  if (age_us > hold_after_us) {
+    if (watch_.liveness == CameraLiveness::kStreaming) ++watch_.late_spells;
+    if (watch_.liveness == CameraLiveness::kLate) watch_.late_us += dt_us;
+    watch_.liveness = CameraLiveness::kLate;
+    status->camera = hrp::approach_status_t::CAMERA_LATE;
+    // Late from the moment the bound passed, not from this cycle: the
+    // arm's allowance is measured from the frames, not from the loop.
+    if (camera_late_since_us_ < 0) camera_late_since_us_ = frame_seen_us_ + hold_after_us;
+  } else {
+    watch_.liveness = CameraLiveness::kStreaming;
+    status->camera = hrp::approach_status_t::CAMERA_STREAMING;
+    camera_late_since_us_ = -1;
+  }
+  status->camera_late_since_utime = camera_late_since_us_;
+}
+
 ApproachOutput ApproachController::step(std::int64_t now_us, const hrp::robot_pose_t* pose,
                                         std::int8_t arm_state) {
   using A = hrp::arm_state_t;
   ApproachOutput out;
-  const double dt_s =
-      last_step_us_ > 0 ? std::min(0.2, 1e-6 * static_cast<double>(now_us - last_step_us_)) : 0.0;
+  const std::int64_t dt_us = last_step_us_ > 0 ? now_us - last_step_us_ : 0;
+  const double dt_s = std::min(0.2, 1e-6 * static_cast<double>(dt_us));
   last_step_us_ = now_us;
   out.velocity.utime = out.status.utime = now_us;
   out.velocity.hold = true;
@@ -82,7 +146,12 @@ ApproachOutput ApproachController::step(std::int64_t now_us, const hrp::robot_po
     pose_unusable_since_us_ = now_us;
   }
   out.status.pose_unusable_since_utime = pose_unusable_since_us_;
-  if (!out.status.pose_usable || !have_target_) {
+  // No fresh frame: the target is where the bar was last seen, so the
+  // robot holds rather than fly in on it (the arm aborts if it lasts).
+  judge_camera(now_us, dt_us, &out.status);
+  const bool camera_holds = out.status.camera != hrp::approach_status_t::CAMERA_STREAMING &&
+                            flies_on_sightings(arm_state);
+  if (!out.status.pose_usable || !have_target_ || camera_holds) {
     settled_ = 0;
     integral_.setZero();
     return out;

@@ -59,7 +59,8 @@ void write_usb_json(const UsbPathReport& u, std::FILE* f) {
       "\"frames_made_by_camera\": %lld, \"unplugs\": %llu, \"replugs\": %llu, "
       "\"stalls\": %llu, \"silences\": %llu, \"clear_halts\": %llu, "
       "\"reinitialisations\": %llu, \"usb_resets\": %llu, \"command_timeouts\": %llu, "
-      "\"transfers_failed\": %llu, \"state\": \"%s\"}",
+      "\"transfers_failed\": %llu, \"reacquisitions\": %llu, \"state\": \"%s\", "
+      "\"health\": \"%s\"}",
       static_cast<unsigned long long>(u.frames_lost),
       static_cast<unsigned long long>(d.frames_delivered),
       static_cast<unsigned long long>(u.frames_not_sent),
@@ -72,7 +73,8 @@ void write_usb_json(const UsbPathReport& u, std::FILE* f) {
       static_cast<unsigned long long>(d.reinitialisations),
       static_cast<unsigned long long>(d.usb_resets),
       static_cast<unsigned long long>(d.command_timeouts),
-      static_cast<unsigned long long>(d.transfers_failed), u.state.c_str());
+      static_cast<unsigned long long>(d.transfers_failed),
+      static_cast<unsigned long long>(d.reacquisitions), u.state.c_str(), u.health.c_str());
 }
 
 // The camera through the royale API: what royale handed on.
@@ -123,6 +125,29 @@ void print_camera(const RunSummary& s, std::FILE* out) {
   if (s.royale) print_royale(*s.royale, out);
 }
 
+// The camera as the perch manager judged it: how often frames went late
+// (the robot held), for how long in all, and the longest gap.
+void print_camera_watch(const RunSummary& s, std::FILE* out) {
+  if (!s.camera_watch) return;
+  const CameraWatch& w = *s.camera_watch;
+  std::fprintf(out,
+               "  camera watch        %u late spells (held %.1f s in all), longest gap between "
+               "frames %.0f ms; %s at the end\n",
+               w.late_spells, 1e-6 * static_cast<double>(w.late_us),
+               1e-3 * static_cast<double>(w.longest_frame_gap_us), to_string(w.liveness));
+}
+
+void write_camera_watch_json(const RunSummary& s, std::FILE* f) {
+  const CameraWatch w = s.camera_watch.value_or(CameraWatch{});
+  std::fprintf(f,
+               ", \"watch\": {\"status\": \"%s\", \"late_spells\": %lld, \"late_ms\": %.1f, "
+               "\"longest_frame_gap_ms\": %.1f}",
+               s.camera_watch ? to_string(w.liveness) : "",
+               s.camera_watch ? static_cast<long long>(w.late_spells) : -1LL,
+               s.camera_watch ? 1e-3 * static_cast<double>(w.late_us) : -1.0,
+               s.camera_watch ? 1e-3 * static_cast<double>(w.longest_frame_gap_us) : -1.0);
+}
+
 void write_camera_json(const RunSummary& s, std::FILE* f) {
   const pico_flexx::PipelineCounts c = s.tof.value_or(pico_flexx::PipelineCounts{});
   const long long none = -1;
@@ -137,6 +162,7 @@ void write_camera_json(const RunSummary& s, std::FILE* f) {
                s.tof ? valid_pixel_share(c) : -1.0);
   if (s.usb) write_usb_json(*s.usb, f);
   if (s.royale) write_royale_json(*s.royale, f);
+  write_camera_watch_json(s, f);
   std::fputs("}, ", f);
 }
 
@@ -151,6 +177,7 @@ void print_frames(const RunSummary& s, std::FILE* out) {
                static_cast<long long>(h.deadline_misses), h.budget_us, h.processing_median_us,
                h.processing_max_us);
   print_camera(s, out);
+  print_camera_watch(s, out);
   if (s.camera_longest_gap_ms >= 0.0) {
     std::fprintf(out, "  frame pipeline      longest gap between frames %.0f ms",
                  s.camera_longest_gap_ms);

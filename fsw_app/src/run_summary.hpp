@@ -13,6 +13,7 @@
 #include "fsw_app/localization_score.hpp"
 #include "fsw_app/localization_task.hpp"
 #include "fsw_app/log_player.hpp"
+#include "fsw_app/perch_manager.hpp"
 #include "fsw_app/periodic_thread.hpp"
 #include "fsw_app/royale_path_report.hpp"
 #include "fsw_app/sighting_tally.hpp"
@@ -52,6 +53,8 @@ struct RunSummary {
   std::optional<dynamixel::BusCounters> servo_bus;
   std::optional<std::uint32_t> gripper_retries;
   double camera_longest_gap_ms = -1.0;
+  // The camera as the perch manager saw it (a manager task here).
+  std::optional<CameraWatch> camera_watch;
   // The frames' path ("raw", "depth", "usb", "royale", "replay"; "" without a camera
   // task here) and, on the raw and USB paths, the ToF processing's figures.
   std::string camera_path;

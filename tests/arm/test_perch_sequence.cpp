@@ -256,6 +256,73 @@ void test_pose_missing_before_the_perch_gets_the_allowance(void**) {
                    static_cast<int>(FaultCode::kPoseLost));
 }
 
+// Frames late (the perch manager holds the robot meanwhile): the approach
+// waits through a gap shorter than camera_lost_ms, even one longer than
+// handrail_lost_ms (no frame is not "no handrail"), and the handrail's
+// allowance restarts when frames return; a longer gap ends the perch
+// CAMERA_LOST with the arm folded, as POSE_LOST does.
+void test_camera_lost_during_the_approach_holds_then_folds(void**) {
+  Rig rig;
+  rig.gripper.handrail_counts = 1800;
+  assert_true(rig.run_until(PerchState::kStowed, 1.0));
+  rig.command(CommandKind::kPerch);
+  assert_true(rig.run_until(PerchState::kGripperOpen, 20.0));
+  const arm::PerchConfig& cfg = rig.seq.config();
+  const auto camera_late = [&rig](bool late) {
+    rig.seeing = !late;
+    rig.approach.camera_usable = !late;
+    rig.approach.camera_late_since_us = late ? rig.clock.now_us() : -1;
+  };
+  // A gap of 2.5 s: past handrail_lost_ms, within camera_lost_ms.
+  camera_late(true);
+  const int gap_steps = static_cast<int>(2500000 / kStepUs);
+  assert_true(2500 > cfg.handrail_lost_ms && 2500 < cfg.camera_lost_ms);
+  for (int k = 0; k < gap_steps; ++k) rig.step();
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kGripperOpen));
+  // Frames back, the handrail not yet seen in them: its allowance counts
+  // from the frames' return, then HANDRAIL_LOST as ever.
+  camera_late(false);
+  rig.seeing = false;
+  for (int k = 0; k < static_cast<int>(1000LL * cfg.handrail_lost_ms / kStepUs) - 2; ++k) {
+    rig.step();
+  }
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kGripperOpen));
+  rig.seeing = true;
+  for (int k = 0; k < 10; ++k) rig.step();
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kGripperOpen));
+  // A gap past camera_lost_ms.
+  camera_late(true);
+  for (int k = 0; k < static_cast<int>(1000LL * cfg.camera_lost_ms / kStepUs) - 1; ++k) {
+    rig.step();
+  }
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kGripperOpen));
+  assert_true(rig.run_until(PerchState::kFault, 0.2));
+  assert_int_equal(static_cast<int>(rig.seq.status().fault),
+                   static_cast<int>(FaultCode::kCameraLost));
+  assert_string_equal(arm::to_string(rig.seq.status().fault), "CAMERA_LOST");
+  for (int k = 0; k < 100; ++k) rig.step();  // 5 s to fold
+  assert_near(rig.joints.q.tilt_rad, cfg.geometry.stow.tilt_rad, 0.02);
+  assert_near(rig.joints.q.pan_rad, cfg.geometry.stow.pan_rad, 0.02);
+  assert_near(rig.gripper.position, cfg.stow_gripper_counts, 2.0);
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kFault));
+}
+
+// Frames late once the fingers close: holding the bar needs no camera.
+void test_camera_late_while_closing_is_no_fault(void**) {
+  Rig rig;
+  rig.gripper.handrail_counts = 1800;
+  assert_true(rig.run_until(PerchState::kStowed, 1.0));
+  rig.command(CommandKind::kPerch);
+  assert_true(rig.run_until(PerchState::kGripperOpen, 20.0));
+  rig.approach.at_target = true;
+  assert_true(rig.run_until(PerchState::kClosing, 1.0));
+  rig.approach.camera_usable = false;
+  rig.approach.camera_late_since_us = rig.clock.now_us() - 10000000;  // long late
+  assert_true(rig.run_until(PerchState::kPerched, 10.0));
+  for (int k = 0; k < 20; ++k) rig.step();
+  assert_int_equal(static_cast<int>(rig.seq.state()), static_cast<int>(PerchState::kPerched));
+}
+
 void test_servo_silent_mid_approach_is_a_fault_naming_it(void**) {
   Rig rig;
   rig.gripper.handrail_counts = 1800;
@@ -495,6 +562,8 @@ int main() {
       cmocka_unit_test(test_handrail_lost_for_a_second_is_survived_longer_is_a_fault),
       cmocka_unit_test(test_pose_lost_during_the_approach_folds_the_arm),
       cmocka_unit_test(test_pose_missing_before_the_perch_gets_the_allowance),
+      cmocka_unit_test(test_camera_lost_during_the_approach_holds_then_folds),
+      cmocka_unit_test(test_camera_late_while_closing_is_no_fault),
       cmocka_unit_test(test_servo_silent_mid_approach_is_a_fault_naming_it),
       cmocka_unit_test(test_servo_overload_goes_limp_with_the_reason),
       cmocka_unit_test(test_gripper_faults),

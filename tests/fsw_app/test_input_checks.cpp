@@ -167,6 +167,9 @@ void test_each_type_has_its_checks(void**) {
   hrp::approach_status_t s{};
   s.position_error_m = -1.0;
   assert_false(fsw_app::check_message(s, &why));
+  s.position_error_m = 0.0;
+  s.camera = hrp::approach_status_t::CAMERA_NOT_SEEN + 1;
+  assert_false(fsw_app::check_message(s, &why));
 }
 
 // Over real LCM (memq): the hub lists each checked channel once, and the

@@ -1,7 +1,8 @@
 // The approach controller against the simulated free-flyer, in lock step
 // on simulated time: from a metre out it reaches the grasp pose within
 // tolerance and settles ("at target"), through the flyer's disturbances;
-// it holds while the arm is not ready, and backs off after letting go.
+// it holds while the arm is not ready, and backs off after letting go;
+// it holds while frames are late and flies on when they come back.
 #include <cmath>
 #include <cstdio>
 
@@ -27,6 +28,10 @@ struct Loop {
   std::int64_t pose_age_us = 0;
   bool pose_lost = false;
   std::int8_t pose_source = hrp::robot_pose_t::SOURCE_FILTER;
+  // The camera: while on, an estimate per frame period (5 fps), captured
+  // 50 ms before the manager gets it.
+  bool camera_on = true;
+  hrp::handrail_estimate_t estimate{};
 
   explicit Loop(std::uint64_t seed) : flyer(start_pose(), sim_hal::FlyerParams{}, seed) {
     // The wall normal is world +x; the bar runs along world z.
@@ -37,7 +42,7 @@ struct Loop {
     T_world_target = T_world_handrail;
     T_world_target.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     T_world_target.translation() = Eigen::Vector3d(0.46, 0.0, 0.05);
-    hrp::handrail_estimate_t e{};
+    hrp::handrail_estimate_t& e = estimate;
     e.state = hrp::handrail_estimate_t::STATE_NE;
     e.capture_utime = 1;
     e.target_in_world = true;
@@ -57,6 +62,10 @@ struct Loop {
   void run(double seconds, std::int8_t arm_state) {
     for (int k = 0; k < seconds * 100; ++k) {
       now_us += 10000;
+      if (camera_on && now_us % cfg.frame_period_us == 0) {
+        estimate.capture_utime = now_us - 50000;
+        ctl.on_estimate(estimate);
+      }
       if (k % 5 == 0) {
         hrp::robot_pose_t pose{};
         pose.utime = now_us - pose_age_us;
@@ -77,6 +86,7 @@ struct Loop {
       flyer.step(0.01, v, w);
     }
   }
+  std::int64_t ctl_frame_seen() const { return estimate.capture_utime; }
   // The grasp point's error.
   double error_m() const {
     return (flyer.pose() * p_body_grasp - T_world_target * p_body_grasp).norm();
@@ -163,6 +173,70 @@ void test_holds_without_a_fresh_filter_pose(void**) {
   assert_false(none.status.pose_usable);
 }
 
+// Frames late (no estimate for more than camera_hold_frames frame
+// periods): the manager holds while it flies on the sightings, says since
+// when, and flies on once they come back; a stall elsewhere (closing, the
+// back-off) flies on the pose alone.
+void test_holds_while_frames_are_late_and_resumes(void**) {
+  using S = hrp::approach_status_t;
+  Loop loop(5);
+  loop.run(3.0, A::DEPLOYING);
+  assert_false(loop.out.velocity.hold);
+  assert_int_equal(loop.out.status.camera, S::CAMERA_STREAMING);
+  assert_int_equal(loop.out.status.camera_late_since_utime, -1);
+  assert_true(loop.out.status.frame_age_ms >= 0 && loop.out.status.frame_age_ms <= 250);
+  const std::int64_t hold_after_us = loop.cfg.camera_hold_frames * loop.cfg.frame_period_us;
+  loop.camera_on = false;
+  const std::int64_t last_frame_us = loop.ctl_frame_seen();
+  // Within the bound: one frame missed is ridden out.
+  loop.run(0.4, A::DEPLOYING);
+  assert_false(loop.out.velocity.hold);
+  assert_int_equal(loop.out.status.camera, S::CAMERA_STREAMING);
+  // Past it: hold, from the moment the bound passed.
+  loop.run(0.5, A::DEPLOYING);
+  std::printf("  frames late: hold %d, frame age %d ms, late since %lld us after the last frame\n",
+              loop.out.velocity.hold, loop.out.status.frame_age_ms,
+              static_cast<long long>(loop.out.status.camera_late_since_utime - last_frame_us));
+  assert_true(loop.out.velocity.hold);
+  assert_int_equal(loop.out.status.camera, S::CAMERA_LATE);
+  assert_int_equal(loop.out.status.camera_late_since_utime, last_frame_us + hold_after_us);
+  assert_true(loop.out.status.frame_age_ms > hold_after_us / 1000);
+  for (int k = 0; k < 3; ++k) assert_true(loop.out.velocity.velocity_mps[k] == 0.0);
+  loop.run(2.0, A::GRIPPER_OPEN);
+  assert_true(loop.out.velocity.hold);
+  assert_false(loop.out.status.at_target);
+  assert_int_equal(loop.out.status.camera_late_since_utime, last_frame_us + hold_after_us);
+  // Keeping station while the fingers close, or backing off, needs the
+  // pose only.
+  loop.run(0.2, A::CLOSING);
+  assert_false(loop.out.velocity.hold);
+  assert_int_equal(loop.out.status.camera, S::CAMERA_LATE);
+  // Frames again: flies on.
+  loop.camera_on = true;
+  loop.run(0.5, A::DEPLOYING);
+  assert_false(loop.out.velocity.hold);
+  assert_int_equal(loop.out.status.camera, S::CAMERA_STREAMING);
+  assert_int_equal(loop.out.status.camera_late_since_utime, -1);
+  assert_string_equal(fsw_app::to_string(fsw_app::CameraLiveness::kLate), "LATE");
+}
+
+// No frame ever (a camera that never started): NOT_SEEN, late since the
+// manager's first cycle, and the robot holds.
+void test_no_frame_yet_is_not_seen(void**) {
+  fsw_app::ApproachConfig cfg;
+  fsw_app::ApproachController ctl(cfg, Eigen::Vector3d(0.4, 0.0, 0.0));
+  hrp::robot_pose_t pose{};
+  pose.source = hrp::robot_pose_t::SOURCE_FILTER;
+  pose.T_world_body.quat_wxyz[0] = 1.0;
+  pose.utime = 5000000;
+  const fsw_app::ApproachOutput out = ctl.step(5000000, &pose, A::DEPLOYING);
+  assert_true(out.velocity.hold);
+  assert_int_equal(out.status.camera, hrp::approach_status_t::CAMERA_NOT_SEEN);
+  assert_int_equal(out.status.camera_late_since_utime, 5000000);
+  assert_int_equal(out.status.frame_seen_utime, -1);
+  assert_int_equal(out.status.frame_age_ms, -1);
+}
+
 }  // namespace
 
 int main() {
@@ -170,6 +244,8 @@ int main() {
       cmocka_unit_test(test_reaches_and_settles_on_the_grasp_pose),
       cmocka_unit_test(test_backs_off_after_letting_go),
       cmocka_unit_test(test_holds_without_a_fresh_filter_pose),
+      cmocka_unit_test(test_holds_while_frames_are_late_and_resumes),
+      cmocka_unit_test(test_no_frame_yet_is_not_seen),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -48,6 +48,14 @@ struct PerchConfig {
   // Approach: the perch manager without a usable robot pose this long (it
   // holds the robot still meanwhile) aborts the perch, the arm folded.
   int pose_lost_ms = 2000;
+  // Approach: no camera frame this long (the perch manager holds the robot
+  // still meanwhile) aborts the perch, the arm folded. 3 s lets the USB
+  // driver ride out what it recovers from on its own: its silence window
+  // (0.5 s) and first rungs (clear halt, re-initialise), or a cable
+  // reseated; an open gripper held still near the wall costs nothing
+  // meanwhile. While frames are missing, handrail_lost_ms waits: no frame
+  // is not "no handrail", and it counts again from the frames' return.
+  int camera_lost_ms = 3000;
   std::uint8_t io_failures_to_fault = 2;  // consecutive failed reads before a fault
 };
 

@@ -11,7 +11,8 @@
 // joints held where they are (torque off if a servo is in alarm), the
 // gripper stopped unless it holds a handrail, in which case it keeps
 // holding. A robot pose lost during the approach (POSE_LOST) folds the arm
-// instead: the robot cannot tell where the wall is. Only STOWED, PERCHED
+// instead: the robot cannot tell where the wall is; so does a camera that
+// delivers no frame (CAMERA_LOST): it cannot see the bar. Only STOWED, PERCHED
 // and FAULT wait without a timeout.
 //
 // step() does all the I/O and is called at a fixed rate by the arm task,
@@ -58,6 +59,14 @@ class PerchSequence {
   // Faults the approach when the perch manager has had no usable robot
   // pose for pose_lost_ms; true when it did.
   bool pose_lost();
+  // The same for the camera: no frame for camera_lost_ms.
+  bool camera_lost();
+  // Shared by both: faults with `code` when `since_us` (>= 0) is older than
+  // limit_ms, counted from the perch's start at the earliest.
+  bool approach_input_lost(std::int64_t since_us, int limit_ms, FaultCode code, const char* detail);
+  // Notes when frames come back after a gap (the handrail's allowance
+  // restarts there).
+  void note_camera_return();
   bool holding_handrail() const;
   bool joints_at(const JointAngles& goal) const;
   void judge_grasp();
@@ -81,6 +90,8 @@ class PerchSequence {
   PerchState after_calibration_ = PerchState::kStowed;
   std::int64_t hold_since_us_ = -1;       // grasp check: when the hold was first seen
   std::int64_t approach_started_us_ = 0;  // entry into DEPLOYING
+  bool camera_was_late_ = false;
+  std::int64_t camera_back_us_ = -1;  // when frames last came back after a gap
 };
 
 }  // namespace arm

@@ -45,6 +45,7 @@ enum class FaultCode : std::uint8_t {
   kAborted,               // the operator aborted a stow or an unperch
   kStartupUnknown,        // at start the arm was neither stowed nor holding, and could not stow
   kPoseLost,              // no usable robot pose for too long during the approach (arm stowed)
+  kCameraLost,            // no camera frame for too long during the approach (arm stowed)
 };
 const char* to_string(FaultCode code);
 
@@ -87,6 +88,8 @@ struct ApproachInput {
   bool backed_off = false;             // after letting go, the robot is clear of the handrail
   bool pose_usable = true;             // the manager flies on a fresh, trusted robot pose
   std::int64_t pose_unusable_since_us = -1;  // since when it has none; -1 while it has one
+  bool camera_usable = true;                 // frames arrive: the manager flies on fresh sightings
+  std::int64_t camera_late_since_us = -1;    // since when they are late; -1 while they arrive
 };
 
 struct ArmStatus {

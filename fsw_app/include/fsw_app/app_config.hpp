@@ -48,6 +48,16 @@ struct ApproachConfig {
   // and no older than this; otherwise it holds still (zero velocity). The
   // filter publishes with every IMU sample (62.5 Hz): 250 ms is 15 missed.
   int pose_max_age_ms = 250;
+  // The robot flies toward the bar only while frames arrive: with none
+  // for more than this many frame periods (the use case's) it holds
+  // still. 3: a single frame refused or dropped by the estimator, plus an
+  // estimate's latency (up to a frame period), is ridden out; two missed
+  // in a row mean the target is being flown on stale sightings (at 5 fps,
+  // 0.6 s, 6 cm at the approach speed limit). The arm's camera_lost_ms
+  // ends the perch if it lasts.
+  int camera_hold_frames = 3;
+  // The camera's frame period, from the use case at start-up (not a key).
+  std::int64_t frame_period_us = 200000;
 };
 
 struct AppConfig {

@@ -15,7 +15,11 @@
 // its ROBOT_POSE is the filter's, not marked lost and at most
 // pose_max_age_ms old; APPROACH_STATUS says since when it has had none,
 // and the arm aborts the perch (POSE_LOST, arm folded) when that lasts
-// longer than its pose_lost_ms.
+// longer than its pose_lost_ms. Likewise from DEPLOYING to GRIPPER_OPEN
+// (where it flies on the sightings) it holds while frames are late, no
+// estimate of any kind for more than camera_hold_frames frame periods;
+// APPROACH_STATUS says since when, and the arm aborts (CAMERA_LOST, arm
+// folded) past its camera_lost_ms. Frames again: the approach resumes.
 // ApproachController is the logic (pure, time injected); PerchManager wires
 // it to LCM on a thread.
 #include <Eigen/Geometry>
@@ -40,6 +44,22 @@ struct ApproachOutput {
   hrp::approach_status_t status{};
 };
 
+// The camera as the manager judges it (approach_status_t's CAMERA_*).
+enum class CameraLiveness : std::int8_t {
+  kStreaming = hrp::approach_status_t::CAMERA_STREAMING,
+  kLate = hrp::approach_status_t::CAMERA_LATE,
+  kNotSeen = hrp::approach_status_t::CAMERA_NOT_SEEN,
+};
+const char* to_string(CameraLiveness liveness);
+
+// The camera over a run, as the manager saw it (for the run's summary).
+struct CameraWatch {
+  CameraLiveness liveness = CameraLiveness::kNotSeen;  // at the last cycle
+  std::uint32_t late_spells = 0;                       // times frames went late after streaming
+  std::int64_t longest_frame_gap_us = 0;               // between successive frames' capture times
+  std::int64_t late_us = 0;                            // total time late after the first frame
+};
+
 class ApproachController {
  public:
   // p_body_grasp: the grasp point in the body frame, arm in the grip posture.
@@ -52,12 +72,16 @@ class ApproachController {
   ApproachOutput step(std::int64_t now_us, const hrp::robot_pose_t* pose, std::int8_t arm_state);
 
   bool has_target() const { return have_target_; }
+  const CameraWatch& camera_watch() const { return watch_; }
   const Eigen::Isometry3d& target() const { return T_world_target_; }
   const Eigen::Isometry3d& handrail() const { return T_world_handrail_; }
 
  private:
   // Whether the robot may fly on this pose now.
   bool pose_usable(std::int64_t now_us, const hrp::robot_pose_t* pose) const;
+  // The camera's liveness, frame age and since when frames are late, into
+  // the status.
+  void judge_camera(std::int64_t now_us, std::int64_t dt_us, hrp::approach_status_t* status);
   // Velocity toward `goal`, limited.
   // With approach_axis, motion along it waits for the lateral error.
   void servo_to(const Eigen::Isometry3d& T_world_body, const Eigen::Isometry3d& goal,
@@ -70,6 +94,9 @@ class ApproachController {
   Eigen::Isometry3d T_world_handrail_ = Eigen::Isometry3d::Identity();
   std::int64_t handrail_seen_us_ = -1;
   std::int64_t pose_unusable_since_us_ = -1;
+  std::int64_t frame_seen_us_ = -1;  // capture time of the newest estimate of any kind
+  std::int64_t camera_late_since_us_ = -1;
+  CameraWatch watch_;
   int settled_ = 0;
   std::int64_t last_step_us_ = 0;
   Eigen::Vector3d integral_ = Eigen::Vector3d::Zero();

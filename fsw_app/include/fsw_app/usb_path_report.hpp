@@ -20,6 +20,7 @@ struct UsbPathReport {
   std::uint64_t frames_refused = 0;   // of frames_lost
   std::uint64_t frames_not_sent = 0;  // of frames_lost
   std::string state;                  // the driver's camera state at the end (STREAMING, LOST, ...)
+  std::string health;                 // its stream's health then (OK, SILENT, CORRUPT_STREAM, ...)
   // The emulated camera's own count of frames it made (sent and dropped
   // for want of a transfer); -1 for a real camera.
   std::int64_t frames_made_by_camera = -1;
@@ -33,6 +34,7 @@ inline UsbPathReport usb_path_report(const pico_flexx::UsbCamera& usb) {
   r.frames_refused = a.dropped();
   r.frames_not_sent = a.frames_missed > a.dropped() ? a.frames_missed - a.dropped() : 0;
   r.state = pico_flexx::to_string(usb.state());
+  r.health = pico_flexx::to_string(usb.health());
   return r;
 }
 
