@@ -207,7 +207,9 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   // verified again, and its pose taken, on the surface around it, where
   // that surface is tilted from the wall (a corner panel stands at 45 deg
   // to the walls beside it; a wall's faces and the fit's noise differ by a
-  // few degrees). A line accepted on the wall keeps that verdict.
+  // few degrees). A line accepted on the wall keeps that verdict and pose
+  // (on the rack walls, taking the surface's pose there too moved the
+  // errors' 95th percentile from 3.2 to 3.5 mm).
   if (cfg_.own_surface_min_tilt_deg >= 90.0f || on_wall == LineVerdict::kAccepted) {
     return on_wall;
   }
