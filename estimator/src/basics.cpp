@@ -15,7 +15,23 @@ HandrailGeometry paper_round_handrail(float bar_length_m) {
 }
 
 HandrailGeometry iss_handrail(float bar_length_m) {
-  return {0.019f, 0.035f, 0.061f, bar_length_m};
+  return {0.019f, 0.035f, 0.061f, bar_length_m, 0.055f, 0.102f};
+}
+
+namespace {
+float offset_min_m(const HandrailGeometry& h) {
+  return h.bar_center_offset_min_m > 0.0f ? h.bar_center_offset_min_m : h.bar_center_offset_m;
+}
+float offset_max_m(const HandrailGeometry& h) {
+  return h.bar_center_offset_max_m > 0.0f ? h.bar_center_offset_max_m : h.bar_center_offset_m;
+}
+}  // namespace
+
+float bar_front_min_m(const HandrailGeometry& h) {
+  return offset_min_m(h) + 0.5f * h.bar_depth_m;
+}
+float bar_front_max_m(const HandrailGeometry& h) {
+  return offset_max_m(h) + 0.5f * h.bar_depth_m;
 }
 
 float gap_min_m(const DetectorConfig& cfg) {
@@ -36,6 +52,10 @@ const char* validate(const DetectorConfig& c) {
   if (!(h.bar_center_offset_m > 0.5f * h.bar_depth_m && h.bar_center_offset_m < 0.5f))
     return "handrail.bar_center_offset_m";
   if (!(h.bar_length_m > 0.05f && h.bar_length_m < 3.0f)) return "handrail.bar_length_m";
+  if (!(offset_min_m(h) > 0.5f * h.bar_depth_m && offset_min_m(h) <= h.bar_center_offset_m))
+    return "handrail.bar_center_offset_min_m";
+  if (!(offset_max_m(h) >= h.bar_center_offset_m && offset_max_m(h) < 0.5f))
+    return "handrail.bar_center_offset_max_m";
   if (!(c.min_range_m > 0.0f && c.max_range_m > c.min_range_m)) return "max_range_m";
   if (!(c.max_find_range_m > c.min_range_m && c.max_find_range_m <= c.max_range_m)) {
     return "max_find_range_m";
@@ -71,6 +91,9 @@ const char* validate(const DetectorConfig& c) {
   }
   if (!(c.end_drop_max_m > 0.0f)) return "end_drop_max_m";
   if (!(c.front_height_tolerance_m > 0.0f)) return "front_height_tolerance_m";
+  if (!(c.own_surface_min_tilt_deg > 0.0f && c.own_surface_min_tilt_deg <= 90.0f)) {
+    return "own_surface_min_tilt_deg";
+  }
   if (c.mount_accept_inliers == 0) return "mount_accept_inliers";
   if (c.max_width == 0 || c.max_height == 0 || c.max_width > Workspace::kMaxWidth ||
       c.max_height > 4096)
@@ -200,6 +223,7 @@ Workspace::Workspace(std::size_t n)
     : max_pixels(n),
       signed_distance_m(new float[n]),
       plane_distance_m(new float[n]),
+      local_distance_m(new float[n]),
       gap_widen_m(new float[n]),
       inverse_depth_per_m(new float[n]),
       flags(new std::uint8_t[n]),
@@ -228,7 +252,7 @@ Workspace::Workspace(std::size_t n)
       refit_z_m(new float[kMaxRefitSamples]) {}
 
 std::size_t Workspace::bytes() const {
-  return max_pixels * (sizeof(float) * 8 + sizeof(std::uint8_t) * 2 + sizeof(std::int32_t) * 7) +
+  return max_pixels * (sizeof(float) * 9 + sizeof(std::uint8_t) * 2 + sizeof(std::int32_t) * 7) +
          3 * sizeof(float) * (kMaxScoreSamples + kMaxRefitSamples) +
          sizeof(std::int32_t) * kMaxRefitSamples + 5 * 4 * kMaxWidth;
 }

@@ -40,6 +40,7 @@ constexpr FloatKey kFloatKeys[] = {
     {"min_visible_length_m", &estimator::DetectorConfig::min_visible_length_m},
     {"min_visible_fraction", &estimator::DetectorConfig::min_visible_fraction},
     {"front_height_tolerance_m", &estimator::DetectorConfig::front_height_tolerance_m},
+    {"own_surface_min_tilt_deg", &estimator::DetectorConfig::own_surface_min_tilt_deg},
     {"profile_min_obliquity_deg", &estimator::DetectorConfig::profile_min_obliquity_deg},
     {"profile_min_spread_m", &estimator::DetectorConfig::profile_min_spread_m},
     {"clearance_low_m", &estimator::DetectorConfig::clearance_low_m},
@@ -143,10 +144,12 @@ bool read_handrail(const JsonValue& h, const std::string& path, estimator::Handr
   }
   g->bar_length_m = static_cast<float>(length);
   for (const auto& m : h.members) {
-    float* field = m.first == "bar_width_m"           ? &g->bar_width_m
-                   : m.first == "bar_depth_m"         ? &g->bar_depth_m
-                   : m.first == "bar_center_offset_m" ? &g->bar_center_offset_m
-                                                      : nullptr;
+    float* field = m.first == "bar_width_m"               ? &g->bar_width_m
+                   : m.first == "bar_depth_m"             ? &g->bar_depth_m
+                   : m.first == "bar_center_offset_m"     ? &g->bar_center_offset_m
+                   : m.first == "bar_center_offset_min_m" ? &g->bar_center_offset_min_m
+                   : m.first == "bar_center_offset_max_m" ? &g->bar_center_offset_max_m
+                                                          : nullptr;
     if (m.first == "kind" || m.first == "bar_length_m") continue;
     if (!field) {
       *error = at(path, m.second) + "unknown key \"handrail." + m.first + "\"";

@@ -222,6 +222,7 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   inlier_extent(cloud, inliers, origin, axis, &t_min, &t_max);
 
   line->axis = axis;
+  line->wall_normal = normal;
   line->point = origin + offset_across * across + cfg.handrail.bar_center_offset_m * normal;
   line->t_min_m = t_min;
   line->t_max_m = t_max;

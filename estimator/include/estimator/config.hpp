@@ -10,15 +10,26 @@ namespace estimator {
 struct HandrailGeometry {
   float bar_width_m;          // across the bar, parallel to the wall
   float bar_depth_m;          // along the wall normal
-  float bar_center_offset_m;  // centre line's distance from the wall
+  float bar_center_offset_m;  // centre line's distance from the wall, nominal
   float bar_length_m;         // between the centre-line end points
+  // The least and the most the centre line stands off the surface its legs
+  // stand on, over every handrail of this kind (0: the nominal alone).
+  float bar_center_offset_min_m = 0.0f;
+  float bar_center_offset_max_m = 0.0f;
 };
 
 // The paper's model: round bar 3.5 cm across on 6.5 cm legs.
 HandrailGeometry paper_round_handrail(float bar_length_m = 0.55f);
 // The ISS bar: rounded rectangle 3.5 cm deep by 1.9 cm across, centre line
-// 6.1 cm off the wall.
+// 6.1 cm off the wall on a catalogue handrail; 5.5 to 10.2 cm over the
+// surface under its legs across the station's modules (on seat tracks, flat
+// panels, 45 deg corner panels, blocks).
 HandrailGeometry iss_handrail(float bar_length_m = 0.55f);
+
+// The bar's front face over the surface its legs stand on: the least and
+// the most the geometry allows.
+float bar_front_min_m(const HandrailGeometry& h);
+float bar_front_max_m(const HandrailGeometry& h);
 
 // A handrail length the detector knows: a bar seen end to end is matched to
 // the nearest one (the beam-length check of Algorithm 1, per length).
@@ -187,6 +198,11 @@ struct DetectorConfig {
   // (shortest_partial_bar_m, verify_candidate).
   float min_visible_fraction = 0.35f;
   float front_height_tolerance_m = 0.004f;  // bar front face vs geometry
+  // A surface around a candidate bar tilted more than this from the
+  // searched wall is the bar's own (a corner panel, a block, a window
+  // frame): the bar is verified, and its pose taken, on it, against the
+  // handrail geometry's range of heights (local_surface.hpp). 90: never.
+  float own_surface_min_tilt_deg = 15.0f;
   // The bar's profile (bar_profile.hpp): seen at least this far from
   // face-on across the bar, the line's inliers must spread at least this
   // far in height above the wall (10th to 90th percentile). The ISS bar's

@@ -80,6 +80,32 @@ class HandrailDetector {
   LineVerdict verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
                                const IndexList& points, LineModel* refined, IndexList& inliers,
                                CenterLine* line, bool ends[2], float end_t[2]);
+  // verify_candidate on the searched wall, on the bar's own surface
+  // (local_surface.hpp), and the
+  // steps after the bar is seated on either.
+  LineVerdict verify_on_searched_wall(const OrganizedCloud& cloud, const LineModel& refined,
+                                      const IndexList& inliers, CenterLine* line, bool ends[2],
+                                      float end_t[2]);
+  LineVerdict verify_on_own_surface(const OrganizedCloud& cloud, const LineModel& refined,
+                                    const IndexList& inliers, CenterLine* line, bool ends[2],
+                                    float end_t[2]);
+  LineVerdict verify_seated_line(const OrganizedCloud& cloud, const IndexList& inliers,
+                                 CenterLine* line, bool ends[2], float end_t[2],
+                                 bool on_searched_wall);
+  // Makes a bar's own surface the searched wall while it lives.
+  class OnLocalSurface {
+   public:
+    OnLocalSurface(HandrailDetector* d, const OrganizedCloud& cloud, const Plane& local);
+    ~OnLocalSurface();
+    OnLocalSurface(const OnLocalSurface&) = delete;
+    OnLocalSurface& operator=(const OnLocalSurface&) = delete;
+
+   private:
+    HandrailDetector* d_;
+    Plane wall_;
+    float mount_m_;
+    bool strict_;
+  };
   // The front-height test against the surfaces in view; moves the line
   // onto the mount it finds.
   bool seat_on_mount(const OrganizedCloud& cloud, const IndexList& inliers, CenterLine* line) const;
@@ -102,7 +128,8 @@ class HandrailDetector {
   const TimeSource* time_;
   Workspace ws_;
   Random rng_;
-  Plane wall_;  // the mount being searched (the dominant plane, shifted)
+  std::uint64_t frame_id_ = 0;  // the frame being detected, for the fits' own random streams
+  Plane wall_;                  // the mount being searched (the dominant plane, shifted)
   Plane dominant_;
   PixelScale scale_;
   MountHypotheses mounts_;       // of the current frame

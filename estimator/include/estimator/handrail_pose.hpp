@@ -26,6 +26,9 @@ struct CenterLine {
   // (not a surface itself): a track the bar hides, which past its ends
   // must show (track_past_end.hpp).
   bool on_hidden_track = false;
+  // The normal of the surface the bar was verified on (the searched wall's,
+  // or the bar's own surface around it): the handrail frame's x axis.
+  Eigen::Vector3f wall_normal = Eigen::Vector3f::Zero();
 };
 
 // Eq. 5: x = wall normal, z = line direction projected onto the wall,

@@ -63,6 +63,10 @@ struct Workspace {
   // on other mounts (the same distances, shifted): the distances, and each
   // pixel's widening of the gap window (twice its bounded noise).
   std::unique_ptr<float[]> plane_distance_m;
+  // The distances to a bar's own surface, where it is not the searched
+  // wall (local_surface.hpp): swapped with signed_distance_m while the bar
+  // is verified on it.
+  std::unique_ptr<float[]> local_distance_m;
   std::unique_ptr<float[]> gap_widen_m;
   // 1 / z per pixel from the same pass (the cross test's probe offsets are
   // metres over depth): one stream of floats the searches read back in
