@@ -207,13 +207,15 @@ bool read_detector_config(const formats::JsonValue& root, const std::string& pat
       if (!read_handrail_types(v, path, quoted(key), &c, error)) return false;
       continue;
     }
-    if (key == "plane_faces_normal" || key == "track_beside" || key == "cross_faces_wall") {
+    if (key == "plane_faces_normal" || key == "track_beside" || key == "cross_faces_wall" ||
+        key == "bar_first") {
       if (!v.is_bool()) {
         *error = at(path, v) + quoted(key) + " must be true or false";
         return false;
       }
       bool& flag = key == "plane_faces_normal" ? c.plane_faces_normal
                    : key == "track_beside"     ? c.track_beside
+                   : key == "bar_first"        ? c.bar_first
                                                : c.cross_faces_wall;
       flag = v.boolean;
       continue;

@@ -7,6 +7,7 @@
 
 #include "estimator/bar_clearance.hpp"
 #include "estimator/bar_profile.hpp"
+#include "estimator/bar_runs.hpp"
 #include "estimator/handrail_filters.hpp"
 #include "estimator/handrail_pose.hpp"
 #include "estimator/handrail_types.hpp"
@@ -196,6 +197,18 @@ LineVerdict HandrailDetector::verify_candidate(const OrganizedCloud& cloud,
   refine_line(cloud, cfg_, wall_, ws_, points, refined, inliers);
   const Cluster cluster = cluster_along_line(cloud, cfg_, *refined, inliers, ws_.line_t_m.get());
   if (cluster.count < cfg_.min_line_inliers) return LineVerdict::kTooFewPoints;
+  if (cfg_.bar_first) {
+    // Bar first: every line is judged on the surface around it, whatever
+    // the dominant plane is; a line with no surface at a handrail's height
+    // behind it is no handrail.
+    Random fit_rng(frame_seed(cfg_.seed, frame_id_) ^
+                   (0x2545f4914f6cdd1dull * (inliers.size() + 1)));
+    const LocalSurface local =
+        fit_surface_around_bar(cloud, cfg_, ws_, inliers, refined->direction, fit_rng);
+    if (!local.found) return LineVerdict::kWrongHeight;
+    const OnLocalSurface on_local(this, cloud, local.plane);
+    return verify_on_own_surface(cloud, *refined, inliers, line, ends, end_t);
+  }
   if (!estimate_center_line(cloud, cfg_, wall_, inliers, ws_, line)) {
     return LineVerdict::kNoCenterLine;
   }
@@ -251,6 +264,9 @@ HandrailDetector::OnLocalSurface::OnLocalSurface(HandrailDetector* d, const Orga
   Workspace& ws = d->ws_;
   distances_to_plane(cloud, local, ws.signed_distance_m.get(), ws.local_distance_m.get());
   std::swap(ws.signed_distance_m, ws.local_distance_m);
+  // The bar's own pixels (the front-face histogram's and the measures'
+  // band) are those at a handrail's height over this surface.
+  if (d->cfg_.bar_first) raised_over_surface(cloud, d->cfg_, ws, ws.gap);
   d->wall_ = local;
   d->search_mount_m_ = 0.0f;
   d->strict_mount_ = true;
@@ -320,8 +336,15 @@ LineVerdict HandrailDetector::verify_seated_line(const OrganizedCloud& cloud,
     return LineVerdict::kShallowProfile;
   }
   // A bar has a grip's clearance under it; a fin or a box edge is solid.
-  const BarClearance clearance = measure_bar_clearance(cloud, cfg_, scale_, ws_, *line, inliers,
-                                                       line->mount_offset_m - search_mount_m_);
+  // Bar first, the band keeps its place under the bar's back face: a bar
+  // standing higher than the least a handrail stands has that much more
+  // space under it, and a track or strip proud of the surface fitted
+  // around it may rise into a band kept over that surface.
+  const float band_shift_m =
+      cfg_.bar_first ? std::fmax(0.0f, line->front_height_m - bar_front_min_m(cfg_.handrail))
+                     : line->mount_offset_m - search_mount_m_;
+  const BarClearance clearance =
+      measure_bar_clearance(cloud, cfg_, scale_, ws_, *line, inliers, band_shift_m);
   if (!clearance_fits_bar(clearance, cfg_)) return LineVerdict::kSolidBelow;
   float drop_m[2] = {0.0f, 0.0f};
   // The front's height in the search's distances (from its wall, not the
@@ -444,6 +467,11 @@ void HandrailDetector::search_on_mount(const OrganizedCloud& cloud, std::int64_t
   out->counts.gap = static_cast<std::uint32_t>(ws_.gap.size());
   out->counts.cross = static_cast<std::uint32_t>(ws_.cross.size());
   out->counts.side = static_cast<std::uint32_t>(ws_.side.size());
+  search_lines(cloud, start_us, out);
+}
+
+void HandrailDetector::search_lines(const OrganizedCloud& cloud, std::int64_t start_us,
+                                    HandrailDetection* out) {
   if (ws_.side.size() < cfg_.min_line_inliers) {
     out->status = DetectStatus::kNoCandidates;
     return;
@@ -542,6 +570,22 @@ void HandrailDetector::search_on_mount(const OrganizedCloud& cloud, std::int64_t
   // of what is visible (the paper's Tr2); the tracker refines it over frames.
   const float t_center = 0.5f * (end_t[chosen][0] + end_t[chosen][1]);
   fill_pose(line.point + t_center * line.axis, R, out);
+}
+
+void HandrailDetector::run_bar_first(const OrganizedCloud& cloud, std::int64_t start_us,
+                                     HandrailDetection* out) {
+  // The distances to the dominant plane: the heights the bar runs are
+  // measured in, and the plane the lines are searched in.
+  search_mount_m_ = 0.0f;
+  strict_mount_ = true;
+  search_index_ = 0;
+  out->mount_offset_m = 0.0f;
+  out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
+  find_bar_runs(cloud, cfg_, scale_, ws_);
+  out->counts.side = static_cast<std::uint32_t>(ws_.side.size());
+  out->counts.mounts_tried = 1;
+  rng_.reseed(frame_seed(cfg_.seed, cloud.frame_id) ^ 0xbf58476d1ce4e5b9ull);
+  search_lines(cloud, start_us, out);
 }
 
 }  // namespace estimator

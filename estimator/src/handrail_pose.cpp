@@ -367,7 +367,37 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
   const double angle = 0.5 * std::atan2(2.0 * cuv, cuu - cvv);
   Eigen::Vector2f dir_px(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)));
 
-  const float lo = gap_min_m(cfg), hi = gap_max_m(cfg);
+  // The front's height along the bar. Bar first, a straight line in t
+  // fitted to the pixels near the front: a bar's front is straight and
+  // holds its height to its legs, and a surface fitted around it a degree
+  // off would tilt a constant front by 1.7 cm over a metre. Otherwise the
+  // level given.
+  float front_a = front_level_m, front_b = 0.0f;
+  if (cfg.bar_first) {
+    double st = 0, ss = 0, stt = 0, sts = 0, nf = 0;
+    for (std::int32_t i : inliers) {
+      const float h = ws.signed_distance_m[i];
+      if (!(h >= front_level_m - 0.5f * cfg.handrail.bar_depth_m)) continue;
+      const double t = (point_of(cloud, i) - line.point).dot(line.axis);
+      st += t;
+      ss += h;
+      stt += t * t;
+      sts += t * h;
+      nf += 1.0;
+    }
+    const double det = nf * stt - st * st;
+    if (nf >= 10.0 && det > 1e-9 * nf * nf) {
+      front_b = static_cast<float>((nf * sts - st * ss) / det);
+      front_a = static_cast<float>((ss - front_b * st) / nf);
+    }
+  }
+  const auto front_at = [&](const CloudPoint& p) {
+    return front_a + front_b * (Eigen::Vector3f(p.x_m, p.y_m, p.z_m) - line.point).dot(line.axis);
+  };
+  // The bar's own pixels: its depth below its front. Bar first, from the
+  // front as measured (a handrail's front stands 7.3 to 12 cm over its
+  // surface); otherwise the nominal handrail's window over the wall.
+  const float depth_below_front = cfg.handrail.bar_depth_m + cfg.gap_margin_m;
   for (int end = 0; end < 2; ++end) {
     // Start at the mean pixel of the inliers within 2 cm of this end.
     const float t_end = end == 0 ? line.t_min_m : line.t_max_m;
@@ -389,7 +419,9 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     // end (the inliers may run on down a ramp).
     float t_front = end == 0 ? INFINITY : -INFINITY;
     for (std::int32_t i : inliers) {
-      if (ws.signed_distance_m[i] < front_level_m - front_tolerance(cloud.points[i])) continue;
+      if (ws.signed_distance_m[i] < front_at(cloud.points[i]) - front_tolerance(cloud.points[i])) {
+        continue;
+      }
       const float t = (point_of(cloud, i) - line.point).dot(line.axis);
       t_front = end == 0 ? std::min(t_front, t) : std::max(t_front, t);
     }
@@ -427,8 +459,14 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     // that surface's level.
     float t_raised = t_inner;
     bool raised_runs_on = true;
+    // Bar first, raised is what stands at the bar's own height, down to a
+    // centimetre under its back face: the surface its legs stand on, and a
+    // track or strip a few centimetres proud of it that runs on past the
+    // leg, are not, whatever level the surface fitted around the bar has.
     const float raised_min_m =
-        std::fmax(cfg.wall_tolerance_m, front_level_m - line.front_height_m + cfg.wall_tolerance_m);
+        cfg.bar_first ? std::fmax(cfg.wall_tolerance_m, front_a - cfg.handrail.bar_depth_m - 0.01f)
+                      : std::fmax(cfg.wall_tolerance_m,
+                                  front_level_m - line.front_height_m + cfg.wall_tolerance_m);
     Eigen::Vector2f centre = start;
     for (int k = 1; k <= max_steps && past_bar <= max_past_bar; ++k) {
       centre += step;
@@ -457,6 +495,9 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
         }
         any_valid = true;
         const float s = ws.signed_distance_m[i];
+        const float front_here = front_at(cloud.points[i]);
+        const float lo = cfg.bar_first ? front_here - depth_below_front : gap_min_m(cfg);
+        const float hi = cfg.bar_first ? front_here + cfg.gap_margin_m : gap_max_m(cfg);
         if (s >= cfg.wall_tolerance_m) all_wall = false;
         if (s >= raised_min_m && s <= hi + 0.02f && raised_runs_on) {
           raised_here = true;
@@ -470,7 +511,7 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
           ++across_n;
           const float t = (point_of(cloud, i) - line.point).dot(line.axis);
           t_bar = end == 0 ? std::min(t_bar, t) : std::max(t_bar, t);
-          if (s >= front_level_m - front_tolerance(cloud.points[i])) {
+          if (s >= front_here - front_tolerance(cloud.points[i])) {
             t_front = end == 0 ? std::min(t_front, t) : std::max(t_front, t);
           }
         }

@@ -123,6 +123,20 @@ void distances_to_plane(const OrganizedCloud& cloud, const Plane& plane,
   }
 }
 
+void raised_over_surface(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                         const Workspace& ws, IndexList& out) {
+  const float lo = bar_front_min_m(cfg.handrail) - cfg.handrail.bar_depth_m - cfg.gap_margin_m;
+  const float hi = bar_front_max_m(cfg.handrail) + cfg.gap_margin_m;
+  const float* distance_m = ws.signed_distance_m.get();
+  const float* widen_m = ws.gap_widen_m.get();
+  out.clear();
+  const std::size_t n = cloud.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const float s = distance_m[i];
+    if (s >= lo - widen_m[i] && s <= hi + widen_m[i]) out.push(static_cast<std::int32_t>(i));
+  }
+}
+
 float tilt_between_deg(const Plane& a, const Plane& b) {
   const float c = std::fmin(1.0f, std::fabs(a.normal.dot(b.normal)));
   return std::acos(c) * 57.2957795f;

@@ -50,6 +50,12 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     return;
   }
 
+  if (cfg_.bar_first) {
+    wall_ = plane.plane;
+    dominant_ = plane.plane;
+    run_bar_first(cloud, start_us, out);
+    return;
+  }
   // The distances to the dominant plane, for every pixel, and the mounts
   // they show.
   wall_ = plane.plane;

@@ -52,9 +52,13 @@ void test_no_allocation_over_hundreds_of_frames(void**) {
   DetectorConfig synthetic_cfg = iss_cfg;
   synthetic_cfg.handrail = paper_round_handrail(0.3f);
   synthetic_cfg.gripper_angle_rad = 0.0f;
-  HandrailDetector iss(iss_cfg), round(round_cfg), synthetic(synthetic_cfg);
+  DetectorConfig bar_first_cfg = iss_cfg;
+  bar_first_cfg.bar_first = true;  // the bar-first search and its own-surface fits
+  HandrailDetector iss(iss_cfg), round(round_cfg), synthetic(synthetic_cfg),
+      bar_first(bar_first_cfg);
   iss.set_line_trace(true);  // the diagnostics' line trace allocates nothing either
   HandrailDetector* detector_for[] = {&iss, &round, &iss, &synthetic, &synthetic};
+  int found_bar_first = 0;
   int found = 0;
   alloc_counter::arm();
   for (int n = 0; n < 300; ++n) {
@@ -63,11 +67,14 @@ void test_no_allocation_over_hundreds_of_frames(void**) {
     const Method m = n % 7 == 3 ? Method::kBasic : Method::kProposed;
     found += detector_for[static_cast<std::size_t>(n) % clouds.size()]->detect(c, m).status ==
              DetectStatus::kFound;
+    // Every frame again bar first (the real ISS frame and the clutter).
+    found_bar_first += bar_first.detect(c).status == DetectStatus::kFound;
   }
   const long allocations = alloc_counter::disarm();
   if (allocations != 0) print_error("%ld allocations while processing frames\n", allocations);
   assert_int_equal(allocations, 0);
   assert_true(found > 100);  // the frames exercised the full pipeline
+  assert_true(found_bar_first > 50);
 }
 
 }  // namespace

@@ -56,6 +56,9 @@ void test_config_file(void**) {
   assert_true(
       estimator::parse_detector_config("{\"cross_faces_wall\": false}", "f.json", &none, &error));
   assert_false(none.cross_faces_wall);
+  assert_false(none.bar_first);
+  assert_true(estimator::parse_detector_config("{\"bar_first\": true}", "b.json", &none, &error));
+  assert_true(none.bar_first);
 
   struct Case {
     const char* text;
@@ -69,6 +72,7 @@ void test_config_file(void**) {
        "c.json:2: \"plane_faces_normal\" must be true or false"},
       {"{\n \"track_beside\": \"yes\"\n}", "c.json:2: \"track_beside\" must be true or false"},
       {"{\n \"cross_faces_wall\": 0\n}", "c.json:2: \"cross_faces_wall\" must be true or false"},
+      {"{\n \"bar_first\": \"on\"\n}", "c.json:2: \"bar_first\" must be true or false"},
       {"{\n \"handrail\": {\"kind\": \"oval\"}\n}",
        "c.json:2: \"handrail.kind\" must be \"iss\" or \"round\""},
       {"{\n \"min_line_inliers\": 2.5\n}",

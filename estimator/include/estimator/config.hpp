@@ -203,6 +203,11 @@ struct DetectorConfig {
   // frame): the bar is verified, and its pose taken, on it, against the
   // handrail geometry's range of heights (local_surface.hpp). 90: never.
   float own_surface_min_tilt_deg = 15.0f;
+  // Bar first (bar_runs.hpp): candidates from the bar's own runs, with no
+  // wall window and no mount search, and every line verified on the
+  // surface around it. Off: the paper's tests on the dominant plane and
+  // the mounts in view.
+  bool bar_first = false;
   // The bar's profile (bar_profile.hpp): seen at least this far from
   // face-on across the bar, the line's inliers must spread at least this
   // far in height above the wall (10th to 90th percentile). The ISS bar's

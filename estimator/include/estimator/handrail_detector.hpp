@@ -76,6 +76,12 @@ class HandrailDetector {
   // The paper's tests and line search against the current wall_ (one mount
   // surface), after the gap distance pass has run against it.
   void search_on_mount(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
+  // Algorithm 2 and the verification of its lines on ws_.side, against
+  // wall_ (the search's coordinates), repeated after rejected lines.
+  void search_lines(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
+  // The bar-first search (DetectorConfig::bar_first): the bar runs
+  // (bar_runs.hpp) as candidates, every line judged on its own surface.
+  void run_bar_first(const OrganizedCloud& cloud, std::int64_t start_us, HandrailDetection* out);
   // Cluster, front height, centre line, ends and length of one line.
   LineVerdict verify_candidate(const OrganizedCloud& cloud, const LineModel& candidate,
                                const IndexList& points, LineModel* refined, IndexList& inliers,

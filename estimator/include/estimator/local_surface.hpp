@@ -38,6 +38,14 @@ LocalSurface fit_surface_around_bar(const OrganizedCloud& cloud, const DetectorC
 void distances_to_plane(const OrganizedCloud& cloud, const Plane& plane,
                         const float* valid_distance_m, float* distance_m);
 
+// The pixels whose distance in ws.signed_distance_m is that of some
+// handrail's visible surface over the plane it was measured from: from the
+// back face at the least height to the front at the most (handrail
+// geometry's range), widened by gap_margin_m and ws.gap_widen_m (twice the
+// pixel's noise). Into `out`, ascending.
+void raised_over_surface(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                         const Workspace& ws, IndexList& out);
+
 // The angle between two planes' normals, degrees (0 to 90).
 float tilt_between_deg(const Plane& a, const Plane& b);
 
