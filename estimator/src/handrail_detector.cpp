@@ -350,8 +350,11 @@ LineVerdict HandrailDetector::verify_seated_line(const OrganizedCloud& cloud,
   // The front's height in the search's distances (from its wall, not the
   // mount the line was seated on).
   const float front_level_m = line->front_height_m + line->mount_offset_m - search_mount_m_;
+  // Bar first, the end walk follows the front's height along the bar.
+  FrontAlongBar front;
+  if (cfg_.bar_first) front = fit_front_along_bar(cloud, cfg_, ws_, inliers, *line);
   detect_ends(cloud, cfg_, scale_, ws_, inliers, *line, wall_.normal, ends, end_t, drop_m,
-              front_level_m);
+              front_level_m, cfg_.bar_first ? &front : nullptr);
   // Seen or not: an end the image's edge, an occluder or dropouts cut off
   // still shows whatever of it lies in view. A handrail's front holds to
   // its leg up to the cut; a cable coming down a ramp there has left the

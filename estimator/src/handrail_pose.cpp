@@ -332,10 +332,35 @@ class RaisedAcrossWalk {
 
 }  // namespace
 
+FrontAlongBar fit_front_along_bar(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                  const Workspace& ws, const IndexList& inliers,
+                                  const CenterLine& line) {
+  FrontAlongBar out;
+  out.level_m = line.front_height_m;
+  double st = 0, sh = 0, stt = 0, sth = 0, n = 0;
+  for (std::int32_t i : inliers) {
+    const float h = ws.signed_distance_m[i];
+    if (!(h >= line.front_height_m - 0.5f * cfg.handrail.bar_depth_m)) continue;
+    const double t = (point_of(cloud, i) - line.point).dot(line.axis);
+    st += t;
+    sh += h;
+    stt += t * t;
+    sth += t * h;
+    n += 1.0;
+  }
+  // Ten pixels spread over a few centimetres at the least: else the level.
+  const double det = n * stt - st * st;
+  if (n < 10.0 || !(det > 1e-4 * n * n)) return out;
+  out.slope = static_cast<float>((n * sth - st * sh) / det);
+  out.level_m = static_cast<float>((sh - out.slope * st) / n);
+  out.fitted = true;
+  return out;
+}
+
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
                  const Eigen::Vector3f& wall_normal, bool end_seen[2], float end_t_m[2],
-                 float end_drop_m[2], float front_level_m) {
+                 float end_drop_m[2], float front_level_m, const FrontAlongBar* front) {
   end_seen[0] = end_seen[1] = false;
   end_t_m[0] = line.t_min_m;
   end_t_m[1] = line.t_max_m;
@@ -367,30 +392,8 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
   const double angle = 0.5 * std::atan2(2.0 * cuv, cuu - cvv);
   Eigen::Vector2f dir_px(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)));
 
-  // The front's height along the bar. Bar first, a straight line in t
-  // fitted to the pixels near the front: a bar's front is straight and
-  // holds its height to its legs, and a surface fitted around it a degree
-  // off would tilt a constant front by 1.7 cm over a metre. Otherwise the
-  // level given.
-  float front_a = front_level_m, front_b = 0.0f;
-  if (cfg.bar_first) {
-    double st = 0, ss = 0, stt = 0, sts = 0, nf = 0;
-    for (std::int32_t i : inliers) {
-      const float h = ws.signed_distance_m[i];
-      if (!(h >= front_level_m - 0.5f * cfg.handrail.bar_depth_m)) continue;
-      const double t = (point_of(cloud, i) - line.point).dot(line.axis);
-      st += t;
-      ss += h;
-      stt += t * t;
-      sts += t * h;
-      nf += 1.0;
-    }
-    const double det = nf * stt - st * st;
-    if (nf >= 10.0 && det > 1e-9 * nf * nf) {
-      front_b = static_cast<float>((nf * sts - st * ss) / det);
-      front_a = static_cast<float>((ss - front_b * st) / nf);
-    }
-  }
+  const float front_a = front != nullptr ? front->level_m : front_level_m;
+  const float front_b = front != nullptr ? front->slope : 0.0f;
   const auto front_at = [&](const CloudPoint& p) {
     return front_a + front_b * (Eigen::Vector3f(p.x_m, p.y_m, p.z_m) - line.point).dot(line.axis);
   };
@@ -464,9 +467,10 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     // track or strip a few centimetres proud of it that runs on past the
     // leg, are not, whatever level the surface fitted around the bar has.
     const float raised_min_m =
-        cfg.bar_first ? std::fmax(cfg.wall_tolerance_m, front_a - cfg.handrail.bar_depth_m - 0.01f)
-                      : std::fmax(cfg.wall_tolerance_m,
-                                  front_level_m - line.front_height_m + cfg.wall_tolerance_m);
+        front != nullptr
+            ? std::fmax(cfg.wall_tolerance_m, front_a - cfg.handrail.bar_depth_m - 0.01f)
+            : std::fmax(cfg.wall_tolerance_m,
+                        front_level_m - line.front_height_m + cfg.wall_tolerance_m);
     Eigen::Vector2f centre = start;
     for (int k = 1; k <= max_steps && past_bar <= max_past_bar; ++k) {
       centre += step;
@@ -496,8 +500,8 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
         any_valid = true;
         const float s = ws.signed_distance_m[i];
         const float front_here = front_at(cloud.points[i]);
-        const float lo = cfg.bar_first ? front_here - depth_below_front : gap_min_m(cfg);
-        const float hi = cfg.bar_first ? front_here + cfg.gap_margin_m : gap_max_m(cfg);
+        const float lo = front != nullptr ? front_here - depth_below_front : gap_min_m(cfg);
+        const float hi = front != nullptr ? front_here + cfg.gap_margin_m : gap_max_m(cfg);
         if (s >= cfg.wall_tolerance_m) all_wall = false;
         if (s >= raised_min_m && s <= hi + 0.02f && raised_runs_on) {
           raised_here = true;

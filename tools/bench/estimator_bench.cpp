@@ -122,11 +122,13 @@ double thread_cpu_us() {
 // faces_wall: the cross test's probes take the faces in view as wall (the
 // the default); off beside it.
 void BM_ScenarioProposed(benchmark::State& state, const char* name, bool round,
-                         std::uint32_t bay_budget = 0, bool faces_wall = true) {
+                         std::uint32_t bay_budget = 0, bool faces_wall = true,
+                         bool bar_first = false) {
   const ScenarioFrames& frames = scenario_frames(name, round);
   estimator::DetectorConfig cfg = frames.cfg;
   if (bay_budget > 0) cfg.max_mount_hypotheses_bay = bay_budget;
   cfg.cross_faces_wall = faces_wall;
+  cfg.bar_first = bar_first;
   estimator::HandrailDetector det(cfg);
   std::vector<double> frame_us, frame_cpu_us;
   frame_us.reserve(1 << 16);
@@ -283,6 +285,31 @@ BENCHMARK_CAPTURE(BM_ScenarioProposed, cupola_views, "cupola-views.json", false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_0_53_bay_budget_3, "rack-table2-iss-0-53.json",
                   false, 3)
+    ->Unit(benchmark::kMillisecond);
+// The same scenes bar first (DetectorConfig::bar_first).
+BENCHMARK_CAPTURE(BM_ScenarioProposed, table2_iss_bar_first, "table2-iss.json", false, 0, true,
+                  true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, clutter_only_bar_first, "clutter-only.json", false, 0, true,
+                  true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, rack_table2_0_53_bar_first, "rack-table2-iss-0-53.json",
+                  false, 0, true, true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, columbus_approaches_bar_first, "columbus-approaches.json",
+                  false, 0, true, true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, node1_views_bar_first, "node1-views.json", false, 0, true,
+                  true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, node2_views_bar_first, "node2-views.json", false, 0, true,
+                  true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, node3_views_bar_first, "node3-views.json", false, 0, true,
+                  true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScenarioProposed, cupola_views_bar_first, "cupola-views.json", false, 0, true,
+                  true)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FrameBasic, iss_table2_1, "table2-iss-1.pcd", false)
     ->Unit(benchmark::kMillisecond);

@@ -75,10 +75,30 @@ bool line_follows_front(const Eigen::Vector3f& candidate_direction, const Center
 // seen obliquely, its leg: wall_normal, the normal of the wall the
 // distances are measured from, places the leg) is neither the bar nor its
 // end: the walk goes on over it without extending the bar.
+// The bar's front height along it, a straight line in t (from
+// line.point along line.axis): a least-squares fit over the inliers within
+// half the bar's depth of the front. A bar's front is straight and
+// parallel to the surface under its legs; against a surface fitted around
+// it a degree off it slopes by 1.7 cm a metre, and a cable climbing onto a
+// box slopes by its climb.
+struct FrontAlongBar {
+  bool fitted = false;   // false: too few pixels or too short; level_m is the line's front
+  float level_m = 0.0f;  // at t = 0
+  float slope = 0.0f;    // metres of height per metre along the bar
+};
+FrontAlongBar fit_front_along_bar(const OrganizedCloud& cloud, const DetectorConfig& cfg,
+                                  const Workspace& ws, const IndexList& inliers,
+                                  const CenterLine& line);
+
+// front (bar first): the front's height along the bar; the end walk then
+// takes the bar's own pixels as those within its depth of that front, and
+// "raised" past an end as standing at the bar's own height. Null: the
+// level front_level_m and the nominal handrail's window over the wall.
 void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                  const Workspace& ws, const IndexList& inliers, const CenterLine& line,
                  const Eigen::Vector3f& wall_normal, bool end_seen[2], float end_t_m[2],
-                 float end_drop_m[2] = nullptr, float front_level_m = 0.0f);
+                 float end_drop_m[2] = nullptr, float front_level_m = 0.0f,
+                 const FrontAlongBar* front = nullptr);
 
 // Whether any of the pixels lies within margin_px of the image's border
 // (a bar the image's edge cuts).
