@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "run_levels.hpp"
+
 namespace estimator {
 namespace {
 
@@ -11,23 +13,8 @@ namespace {
 // pixel, the drop from its edge to the surface behind is 3.75 cm or more.
 constexpr float kJumpM = 0.02f;
 
-float bounded_noise(float noise_m) {
-  const float positive = noise_m > 0.0f ? noise_m : 0.0f;  // NaN counts 0
-  return positive < 0.02f ? positive : 0.02f;
-}
-
-// The level just past a run's end: the first valid pixel 2 to 4 pixels out
-// (the one right beside it often mixes the bar's return with the
-// surface's); NaN if none.
-float level_past_end(const float* height_m, int stride, int n, int end, int step) {
-  for (int k = 2; k <= 4; ++k) {
-    const int j = end + step * k;
-    if (j < 0 || j >= n) break;
-    const float h = height_m[j * stride];
-    if (h > -INFINITY) return h;
-  }
-  return NAN;
-}
+using run_levels::clamp_noise;
+using run_levels::level_beside_end;
 
 struct RunLimits {
   float width_min_m, width_max_m;
@@ -54,7 +41,7 @@ void mark_runs_on_line(const OrganizedCloud& cloud, const RunLimits& lim, Worksp
     while (last + 1 < n) {
       const float next = height_m[(last + 1) * stride];
       const float here = height_m[last * stride];
-      const float jump = kJumpM + 2.0f * bounded_noise(cloud.points[base + last * stride].noise_m);
+      const float jump = kJumpM + 2.0f * clamp_noise(cloud.points[base + last * stride].noise_m);
       if (!(next > -INFINITY) || std::fabs(next - here) > jump) break;
       peak_m = std::max(peak_m, next);
       ++last;
@@ -70,8 +57,8 @@ void mark_runs_on_line(const OrganizedCloud& cloud, const RunLimits& lim, Worksp
     const float footprint_m = 0.5f * (a.z_m + b.z_m) * lim.pixel_angle_rad;
     const float width_m = std::sqrt(dx * dx + dy * dy + dz * dz) + footprint_m;
     if (!(width_m > lim.width_min_m && width_m < lim.width_max_m)) continue;
-    const float before = level_past_end(height_m, stride, n, run_first, -1);
-    const float after = level_past_end(height_m, stride, n, last, 1);
+    const float before = level_beside_end(height_m, stride, n, run_first, -1);
+    const float after = level_beside_end(height_m, stride, n, last, 1);
     // fmax of NaN and a number is the number: one side's level will do.
     const float higher = std::fmax(before, after);
     if (!(peak_m - higher >= lim.min_rise_m)) continue;

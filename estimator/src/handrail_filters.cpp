@@ -1,6 +1,7 @@
 #include "estimator/handrail_filters.hpp"
 
 #include "four_lanes.hpp"
+#include "run_levels.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,12 +35,8 @@ class AscendingPixels {
   std::int32_t row_start_ = 0;
 };
 
-// A pixel's noise, bounded to [0, 2 cm]; NaN counts as 0 (comparisons with
-// NaN are false), so no bad value can open the windows.
-float clamp_noise(float noise_m) {
-  const float positive = noise_m > 0.0f ? noise_m : 0.0f;  // a max without a branch
-  return positive < 0.02f ? positive : 0.02f;
-}
+using run_levels::clamp_noise;
+using run_levels::level_beside_end;
 
 // The cross test's probes for the wall beside a bar. A probe searches a
 // segment of its row or column: from `offset` pixels out back toward the
@@ -237,19 +234,6 @@ struct RaisedRun {
   int first = 0;  // its first and last pixel along the walk
   int last = -1;
 };
-
-// The level beside a run's end: the first valid pixel 2 to 4 pixels out
-// (the one right beside it often mixes the run's return with the
-// surface's); NaN if none is in the image and valid.
-float level_beside_end(const float* distance_m, int stride, int n, int end, int step) {
-  for (int k = 2; k <= 4; ++k) {
-    const int j = end + step * k;
-    if (j < 0 || j >= n) break;
-    const float s = distance_m[j * stride];
-    if (s > -INFINITY) return s;
-  }
-  return NAN;
-}
 
 // An invalid pixel's wall distance is -infinity: one load and one
 // comparison judge it.

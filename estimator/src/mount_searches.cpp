@@ -50,16 +50,14 @@ void HandrailDetector::run_proposed(const OrganizedCloud& cloud, std::int64_t st
     return;
   }
 
+  wall_ = plane.plane;
+  dominant_ = plane.plane;
   if (cfg_.bar_first) {
-    wall_ = plane.plane;
-    dominant_ = plane.plane;
     run_bar_first(cloud, start_us, out);
     return;
   }
   // The distances to the dominant plane, for every pixel, and the mounts
   // they show.
-  wall_ = plane.plane;
-  dominant_ = plane.plane;
   rack_faces_ = plane.faces_span_m >= kRackFaceStepM;
   out->counts.plane_inliers = gap_distance_test(cloud, cfg_, wall_, ws_, &out->counts.valid);
   keep_plane_pass(cloud, ws_);
