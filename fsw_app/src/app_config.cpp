@@ -340,6 +340,7 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     if (!s.only({"standoff_m", "max_speed_mps", "max_rate_rps", "gain_per_s",
                  "integral_gain_per_s2", "brake_mps2", "settle_speed_mps", "position_tolerance_m",
                  "angle_tolerance_deg", "back_off_m", "settle_cycles", "pose_max_age_ms",
+                 "pose_max_position_sigma_m", "pose_max_attitude_sigma_deg",
                  "camera_hold_frames"})) {
       return false;
     }
@@ -358,6 +359,10 @@ bool parse_app_config(const std::string& text, const std::string& path, AppConfi
     s.number("back_off_m", &a.back_off_m, 0.05, 2.0);
     s.integer("settle_cycles", &a.settle_cycles, 1, 1000);
     s.integer("pose_max_age_ms", &a.pose_max_age_ms, 20, 5000);
+    s.number("pose_max_position_sigma_m", &a.pose_max_position_sigma_m, 0.005, 10.0);
+    double sigma_deg = a.pose_max_attitude_sigma_rad / kDeg;
+    s.number("pose_max_attitude_sigma_deg", &sigma_deg, 0.1, 180.0);
+    a.pose_max_attitude_sigma_rad = sigma_deg * kDeg;
     s.integer("camera_hold_frames", &a.camera_hold_frames, 2, 100);
     if (!s.ok()) return false;
   }

@@ -26,6 +26,8 @@ const char* to_string(InputReject reason) {
       return "SEQUENCE";
     case InputReject::kRateLimited:
       return "RATE_LIMITED";
+    case InputReject::kWrongSource:
+      return "WRONG_SOURCE";
   }
   return "UNKNOWN";
 }
@@ -59,6 +61,9 @@ class Verdict {
   void count_within(std::int64_t v, std::int64_t lo, std::int64_t hi) {
     if (v < lo || v > hi) fail(InputReject::kOutOfRange);
   }
+  void equals(std::int64_t v, std::int64_t expected, InputReject otherwise) {
+    if (v != expected) fail(otherwise);
+  }
   void pose(const hrp::pose_t& p, double max_position_m) {
     norm_at_most(p.position_m, 3, max_position_m);
     finite(p.quat_wxyz, 4);
@@ -88,8 +93,13 @@ bool check_message(const hrp::robot_pose_t& m, InputReject* why) {
   v.pose(m.T_world_body, kMaxWorldPosition_m);
   v.norm_at_most(m.velocity_mps, 3, kMaxSpeed_mps);
   v.norm_at_most(m.angular_velocity_rps, 3, kMaxAngularSpeed_rps);
-  v.count_within(m.source, hrp::robot_pose_t::SOURCE_UNKNOWN, hrp::robot_pose_t::SOURCE_TRUTH);
   for (const auto& row : m.pose_covariance) v.finite(row, 6);
+  // A variance is never negative; 1e6 (a kilometre, 1000 rad) is no estimate.
+  for (int k = 0; k < 6; ++k) v.within(m.pose_covariance[k][k], 0.0, 1e6);
+  // The robot's tasks fly on the filter's pose only: the truth, the GP's
+  // fix or a stray sender on ROBOT_POSE would replace it in every task's
+  // mailbox (and, repeated, hold the robot still) if it were taken in.
+  v.equals(m.source, hrp::robot_pose_t::SOURCE_FILTER, InputReject::kWrongSource);
   return v.ok();
 }
 

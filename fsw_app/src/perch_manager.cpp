@@ -1,6 +1,7 @@
 #include "fsw_app/perch_manager.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "fsw_app/msg_convert.hpp"
@@ -92,7 +93,15 @@ bool ApproachController::pose_usable(std::int64_t now_us, const hrp::robot_pose_
   if (pose->source != hrp::robot_pose_t::SOURCE_FILTER || pose->lost) return false;
   // A pose dated ahead of this clock was refused on receipt; one this old
   // is where the robot was, not where it is.
-  return now_us - pose->utime <= cfg_.pose_max_age_ms * 1000LL;
+  if (now_us - pose->utime > cfg_.pose_max_age_ms * 1000LL) return false;
+  // One the filter gives a spread this wide is a guess. The covariance's
+  // rows are position then attitude error; its diagonal was checked
+  // finite and non-negative on receipt.
+  const auto& P = pose->pose_covariance;
+  const double position_sigma_m = std::sqrt(P[0][0] + P[1][1] + P[2][2]);
+  const double attitude_sigma_rad = std::sqrt(P[3][3] + P[4][4] + P[5][5]);
+  return position_sigma_m <= cfg_.pose_max_position_sigma_m &&
+         attitude_sigma_rad <= cfg_.pose_max_attitude_sigma_rad;
 }
 
 void ApproachController::judge_camera(std::int64_t now_us, std::int64_t dt_us,

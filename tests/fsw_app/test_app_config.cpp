@@ -94,6 +94,22 @@ void test_mistakes_name_file_line_and_key(void**) {
   assert_non_null(std::strstr(error.c_str(), "/nonexistent/fsw.json: cannot open"));
 }
 
+// The manager's bounds on the pose it flies on: read in their units,
+// refused outside their ranges.
+void test_pose_bounds_are_read(void**) {
+  fsw_app::AppConfig c;
+  std::string error;
+  assert_true(fsw_app::parse_app_config(
+      "{\"approach\": {\"pose_max_position_sigma_m\": 0.1, \"pose_max_attitude_sigma_deg\": 5}}",
+      "cfg.json", &c, &error));
+  assert_near(c.approach.pose_max_position_sigma_m, 0.1, 1e-12);
+  assert_near(c.approach.pose_max_attitude_sigma_rad, 5.0 * M_PI / 180.0, 1e-9);
+  expect_error("{\"approach\": {\"pose_max_position_sigma_m\": 0}}",
+               {"approach.pose_max_position_sigma_m", "within"});
+  expect_error("{\"approach\": {\"pose_max_attitude_sigma_deg\": -3}}",
+               {"approach.pose_max_attitude_sigma_deg", "within"});
+}
+
 void test_a_failed_load_changes_nothing(void**) {
   fsw_app::AppConfig c;
   c.arm_rate_hz = 33.0;
@@ -111,6 +127,7 @@ int main() {
       cmocka_unit_test(test_shipped_configuration_loads),
       cmocka_unit_test(test_camera_serial_is_read),
       cmocka_unit_test(test_mistakes_name_file_line_and_key),
+      cmocka_unit_test(test_pose_bounds_are_read),
       cmocka_unit_test(test_a_failed_load_changes_nothing),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

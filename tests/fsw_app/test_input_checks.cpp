@@ -28,6 +28,7 @@ std::vector<std::uint8_t> encode(const Msg& m) {
 hrp::robot_pose_t pose_at(double x_m, std::int64_t utime) {
   hrp::robot_pose_t p{};
   p.utime = utime;
+  p.source = hrp::robot_pose_t::SOURCE_FILTER;
   p.T_world_body.position_m[0] = x_m;
   p.T_world_body.quat_wxyz[0] = 1.0;
   return p;
@@ -42,7 +43,7 @@ void deliver(fsw_app::Mailbox<Msg>* box, const std::vector<std::uint8_t>& bytes)
   box->deliver(bytes.data(), static_cast<std::uint32_t>(bytes.size()), fsw_app::kNoReceiverClock);
 }
 
-// Issue item 1: the last 8 bytes cut; the fingerprint is right.
+// The last 8 bytes cut; the fingerprint is right.
 void test_truncated_pose_changes_nothing(void**) {
   fsw_app::Mailbox<hrp::robot_pose_t> box;
   deliver(&box, encode(pose_at(1.5, 1000)));
@@ -57,7 +58,7 @@ void test_truncated_pose_changes_nothing(void**) {
   assert_int_equal(box.input_counts().accepted.load(), 1);
 }
 
-// Issue item 2, and the ranges.
+// Numbers that are not finite, and the ranges.
 void test_non_finite_and_impossible_poses_are_refused(void**) {
   fsw_app::Mailbox<hrp::robot_pose_t> box;
   deliver(&box, encode(pose_at(0.5, 1000)));
@@ -92,6 +93,33 @@ void test_non_finite_and_impossible_poses_are_refused(void**) {
   assert_true(held.T_world_body.position_m[0] == 0.7);
 }
 
+// ROBOT_POSE is the filter's: the truth, the GP's fix or a sender that
+// does not say are refused by name, as is a negative variance; none of
+// them replaces the filter's pose the tasks fly on.
+void test_pose_from_another_source_is_refused(void**) {
+  fsw_app::Mailbox<hrp::robot_pose_t> box;
+  deliver(&box, encode(pose_at(0.5, 1000)));
+  for (std::int8_t source : {hrp::robot_pose_t::SOURCE_TRUTH, hrp::robot_pose_t::SOURCE_GP,
+                             hrp::robot_pose_t::SOURCE_UNKNOWN, std::int8_t{42}}) {
+    hrp::robot_pose_t p = pose_at(3.0, 2000);
+    p.source = source;
+    deliver(&box, encode(p));
+  }
+  assert_int_equal(rejected(box.input_counts(), InputReject::kWrongSource), 4);
+  assert_string_equal(fsw_app::to_string(InputReject::kWrongSource), "WRONG_SOURCE");
+  hrp::robot_pose_t p = pose_at(3.0, 2000);
+  p.pose_covariance[4][4] = -1e-4;
+  deliver(&box, encode(p));
+  assert_int_equal(rejected(box.input_counts(), InputReject::kOutOfRange), 1);
+  hrp::robot_pose_t held{};
+  assert_int_equal(box.read(&held), 1);
+  assert_true(held.T_world_body.position_m[0] == 0.5);
+  p.pose_covariance[4][4] = 1e-4;
+  deliver(&box, encode(p));
+  assert_int_equal(box.read(&held), 2);
+  assert_true(held.T_world_body.position_m[0] == 3.0);
+}
+
 // Older than the held one: a reordered or replayed copy. Much older: a
 // sender whose clock started again, taken.
 void test_stale_messages_are_refused(void**) {
@@ -105,7 +133,7 @@ void test_stale_messages_are_refused(void**) {
   assert_true(held.T_world_body.position_m[0] == 0.8);
 }
 
-// Issue item 3: a valid ABORT with 64 junk bytes after it is not carried
+// A valid ABORT with 64 junk bytes after it is not carried
 // out; the same ABORT alone is.
 void test_command_with_trailing_bytes_is_not_queued(void**) {
   fsw_app::MessageQueue<hrp::perch_command_t, 8> queue;
@@ -215,6 +243,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_truncated_pose_changes_nothing),
       cmocka_unit_test(test_non_finite_and_impossible_poses_are_refused),
+      cmocka_unit_test(test_pose_from_another_source_is_refused),
       cmocka_unit_test(test_stale_messages_are_refused),
       cmocka_unit_test(test_command_with_trailing_bytes_is_not_queued),
       cmocka_unit_test(test_each_type_has_its_checks),

@@ -28,6 +28,9 @@ struct Loop {
   std::int64_t pose_age_us = 0;
   bool pose_lost = false;
   std::int8_t pose_source = hrp::robot_pose_t::SOURCE_FILTER;
+  // Its 1-sigma per axis, as the filter claims it: a GP-fed filter's.
+  double pose_position_sigma_m = 0.02;
+  double pose_attitude_sigma_rad = 0.01;
   // The camera: while on, an estimate per frame period (5 fps), captured
   // 50 ms before the manager gets it.
   bool camera_on = true;
@@ -71,6 +74,10 @@ struct Loop {
         pose.utime = now_us - pose_age_us;
         pose.source = pose_source;
         pose.lost = pose_lost;
+        for (int i = 0; i < 3; ++i) {
+          pose.pose_covariance[i][i] = pose_position_sigma_m * pose_position_sigma_m;
+          pose.pose_covariance[3 + i][3 + i] = pose_attitude_sigma_rad * pose_attitude_sigma_rad;
+        }
         fsw_app::to_msg(flyer.pose(), &pose.T_world_body);
         for (int i = 0; i < 3; ++i) pose.velocity_mps[i] = flyer.velocity()[i];
         out = ctl.step(now_us, &pose, arm_state);
@@ -134,7 +141,8 @@ void test_backs_off_after_letting_go(void**) {
 }
 
 // Without a pose it can fly on (older than pose_max_age_ms, marked lost,
-// or from anything but the filter), the manager holds the robot still and
+// from anything but the filter, or spread wider than the filter's own
+// bounds allow), the manager holds the robot still and
 // says since when; with one again it flies on.
 void test_holds_without_a_fresh_filter_pose(void**) {
   Loop loop(4);
@@ -163,6 +171,13 @@ void test_holds_without_a_fresh_filter_pose(void**) {
   loop.pose_source = hrp::robot_pose_t::SOURCE_TRUTH;
   holds("pose from the truth");
   loop.pose_source = hrp::robot_pose_t::SOURCE_FILTER;
+  // 0.15 m per axis is 0.26 m radial: past the 0.25 m bound; 0.1 m flies.
+  loop.pose_position_sigma_m = 0.15;
+  holds("position 0.26 m uncertain");
+  loop.pose_position_sigma_m = 0.1;
+  loop.pose_attitude_sigma_rad = 0.12;  // 0.21 rad radial, 12 deg
+  holds("attitude 12 deg uncertain");
+  loop.pose_attitude_sigma_rad = 0.05;
   loop.run(0.5, A::DEPLOYING);
   assert_false(loop.out.velocity.hold);
   assert_true(loop.out.status.pose_usable);

@@ -48,6 +48,16 @@ struct ApproachConfig {
   // and no older than this; otherwise it holds still (zero velocity). The
   // filter publishes with every IMU sample (62.5 Hz): 250 ms is 15 missed.
   int pose_max_age_ms = 250;
+  // Nor on a pose the filter itself no longer vouches for: its position
+  // 1-sigma (the square root of the position block's trace, the radial
+  // spread) or its attitude's above these. A filter fed by the GP (a few
+  // centimetres) or by handrail sightings (millimetres) is far below; one
+  // coasting on the IMU alone for tens of seconds, or after a reset, is
+  // past them. A quarter metre is the map's own bound for taking a first
+  // sighting (map_init_max_position_sigma_m); the stand-off pose is 0.3 m
+  // out from the bar.
+  double pose_max_position_sigma_m = 0.25;
+  double pose_max_attitude_sigma_rad = 0.1745;  // 10 deg
   // The robot flies toward the bar only while frames arrive: with none
   // for more than this many frame periods (the use case's) it holds
   // still. 3: a single frame refused or dropped by the estimator, plus an

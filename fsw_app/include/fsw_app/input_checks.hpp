@@ -34,8 +34,9 @@ enum class InputReject : std::uint8_t {
   kFuture,         // dated ahead of the receiver's clock (input_gates.hpp)
   kSequence,       // a sample counter that does not advance, or jumps too far
   kRateLimited,    // more messages than the channel's rate bound allows
+  kWrongSource,    // a ROBOT_POSE whose source is not the localization filter
 };
-constexpr int kInputRejectKinds = 10;
+constexpr int kInputRejectKinds = 11;
 const char* to_string(InputReject reason);
 
 // Accepted and rejected messages on one channel. Written by the dispatcher

@@ -12,8 +12,9 @@
 //   PERCHED, FAULT and the rest: hold;
 //   BACKING_OFF: straight out along the wall normal, "backed off" once clear.
 // Whatever the arm's state, the robot holds still (zero velocity) unless
-// its ROBOT_POSE is the filter's, not marked lost and at most
-// pose_max_age_ms old; APPROACH_STATUS says since when it has had none,
+// its ROBOT_POSE is the filter's, not marked lost, at most
+// pose_max_age_ms old and no more uncertain than pose_max_position_sigma_m
+// and pose_max_attitude_sigma_rad; APPROACH_STATUS says since when it has had none,
 // and the arm aborts the perch (POSE_LOST, arm folded) when that lasts
 // longer than its pose_lost_ms. Likewise from DEPLOYING to GRIPPER_OPEN
 // (where it flies on the sightings) it holds while frames are late, no
