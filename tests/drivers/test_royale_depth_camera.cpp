@@ -194,7 +194,7 @@ void test_wall_through_royale(void**) {
   // Only operator new is counted here: none on the camera's thread, the
   // copies (royale's DepthData, then hal's frame) and the processing included.
   // Outside the sanitizer libusb's per-transfer callocs count too
-  // (drivers_usb_camera bounds those).
+  // (drivers_usb_camera_streaming bounds those).
   assert_int_equal(listener.allocations, 0);
 #endif
 }

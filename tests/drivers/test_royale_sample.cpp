@@ -202,8 +202,8 @@ void test_api_contract(void**) {
 #endif
   // Outside the sanitizer malloc is counted too, and libusb's Linux backend
   // callocs each submitted transfer's URB array (about 11 a MODE_9 frame
-  // in 64 KB transfers): drivers_usb_camera checks that bound, with the
-  // driver's transfer count.
+  // in 64 KB transfers): drivers_usb_camera_streaming checks that bound,
+  // with the driver's transfer count.
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ namespace {
 // The receivers of fsw_app/src and fsw_app/include (capacity 0: a Mailbox).
 #if defined(FUZZ_TYPE_arm_state_t)
 using Msg = hrp::arm_state_t;
-constexpr std::size_t kCapacity = 0;  // perch_manager.hpp, main.cpp
+constexpr std::size_t kCapacity = 0;  // perch_manager.hpp, run_watch.hpp
 #elif defined(FUZZ_TYPE_robot_pose_t)
 using Msg = hrp::robot_pose_t;
 constexpr std::size_t kCapacity = 0;  // perch_manager.hpp, estimator_task.hpp
@@ -51,10 +51,10 @@ using Msg = hrp::handrail_estimate_t;
 constexpr std::size_t kCapacity = 0;  // perch_manager.hpp, localization_task.hpp
 #elif defined(FUZZ_TYPE_approach_status_t)
 using Msg = hrp::approach_status_t;
-constexpr std::size_t kCapacity = 0;  // arm_task.hpp, main.cpp
+constexpr std::size_t kCapacity = 0;  // arm_task.hpp, run_watch.hpp
 #elif defined(FUZZ_TYPE_estimator_health_t)
 using Msg = hrp::estimator_health_t;
-constexpr std::size_t kCapacity = 0;  // main.cpp
+constexpr std::size_t kCapacity = 0;  // run_watch.hpp
 #elif defined(FUZZ_TYPE_perch_command_t)
 using Msg = hrp::perch_command_t;
 constexpr std::size_t kCapacity = 8;  // arm_task.hpp: kCommandQueue
