@@ -1,6 +1,6 @@
 #pragma once
 // Handrail geometry and detector thresholds. Every number the detector uses
-// lives here; the defaults are documented in estimator/README.md.
+// lives here; the defaults are documented in estimator/doc/config.md.
 #include <cstdint>
 
 namespace estimator {

@@ -1,6 +1,6 @@
 #pragma once
-// Every number the localization filter uses. Defaults in estimator/README.md
-// ("Localization"); validate() names the first field out of range.
+// Every number the localization filter uses. Defaults in
+// estimator/doc/localization.md; validate() names the first field out of range.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
