@@ -33,7 +33,7 @@ void usage(FILE* out) {
                "  --gripper-angle DEG      angle of handrails the gripper takes; 0 (default) =\n"
                "                           handrails along the image's y axis\n"
                "  --handrail iss|round     handrail geometry (default iss; see --config)\n"
-               "  --config FILE            detector configuration (JSON; estimator/README.md)\n"
+               "  --config FILE            detector configuration (JSON; estimator/doc/config.md)\n"
                "  --debug-png DIR          pictures of each stage per frame (DIR/NAME_STAGE.png)\n"
                "  --sequence               the files are a time series from a still camera, in\n"
                "                           the given order: track the handrail over them (the\n"
