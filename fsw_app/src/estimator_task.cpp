@@ -19,7 +19,7 @@ EstimatorTask::EstimatorTask(LcmHub& hub, CameraTask& camera, FrameRing& ring,
       estimate_pub_(hub, channel::kHandrailEstimate),
       health_pub_(hub, channel::kEstimatorHealth),
       cloud_points_(static_cast<std::size_t>(cfg.max_width) * cfg.max_height) {
-  hub_.subscribe(channel::kRobotPose, &pose_box_);
+  hub_.subscribe(channel::kRobotPose, &poses_);
   last_health_us_ = clock_.now_us();
 }
 
@@ -43,7 +43,8 @@ void EstimatorTask::stop() {
 }
 
 EstimatorCounters EstimatorTask::counters() const {
-  return {processed_.load(), misses_.load(), found_.load(), longest_latency_us_.load()};
+  return {processed_.load(), misses_.load(), found_.load(), longest_latency_us_.load(),
+          without_pose_.load()};
 }
 
 void EstimatorTask::note_time(std::int32_t us) {
@@ -100,9 +101,14 @@ void EstimatorTask::fill_estimate(const estimator::HandrailDetection& d) {
     for (double& v : e) v = 0.0;
   m.bar_length_m = 0.0;
 
-  const bool have_pose = pose_box_.read(&pose_) != 0;
-  const Eigen::Isometry3d T_world_body =
-      have_pose ? from_msg(pose_.T_world_body) : Eigen::Isometry3d::Identity();
+  // The camera's pose is the robot's at the frame's capture, not at this
+  // moment: placed with the newest pose, a sighting would carry the
+  // robot's motion over the frame's transfer and the detector's time.
+  Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
+  const PoseAtStatus at_capture = poses_.pose_at(d.capture_time_us, &T_world_body);
+  const bool have_pose =
+      at_capture == PoseAtStatus::kInterpolated || at_capture == PoseAtStatus::kNewest;
+  if (!have_pose) without_pose_.fetch_add(1);
   if (have_pose) {
     // The tracker runs on every frame, found or not (a miss ages the track).
     tracker_.update(d, T_world_body.cast<float>(), cfg_.T_body_cam.cast<float>());

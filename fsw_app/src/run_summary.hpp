@@ -63,6 +63,9 @@ struct RunSummary {
   std::optional<UsbPathReport> usb;        // the USB path's driver (and emulated camera)
   std::optional<RoyalePathReport> royale;  // the camera through the royale API
   double estimator_longest_latency_ms = -1.0;
+  // Frames the estimator could not place in the world: no robot pose at
+  // their capture time (-1: no estimator task here).
+  long long estimator_frames_without_pose = -1;
   std::optional<LogPlayerCounts> replay;
   std::int64_t log_messages = -1;
   std::int64_t log_depth_frames = -1;  // DEPTH_FRAME messages in the log

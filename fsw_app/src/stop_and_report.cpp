@@ -32,6 +32,8 @@ int stop_and_report(const Options& opt, LcmHub& hub, const hal::Clock& clock, Ru
   if (tasks.estimator_task) {
     summary.estimator_longest_latency_ms =
         1e-3 * static_cast<double>(tasks.estimator_task->counters().longest_latency_us);
+    summary.estimator_frames_without_pose =
+        static_cast<long long>(tasks.estimator_task->counters().without_pose);
   }
   if (tasks.player) tasks.player->stop();
   if (tasks.manager) {

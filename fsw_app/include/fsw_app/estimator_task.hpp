@@ -2,7 +2,8 @@
 // The estimator task: takes the newest frame from the ring (older unread
 // frames are dropped and counted, never queued), runs the detector with the
 // frame budget of the camera's use case, tracks the handrail in the world
-// frame when the robot's pose is known, and publishes every result on
+// frame when the robot's pose at the frame's capture is known (interpolated
+// from the recent ROBOT_POSEs, pose_history.hpp), and publishes every result on
 // HANDRAIL_ESTIMATE and its counters on ESTIMATOR_HEALTH once a second.
 // All buffers are sized at construction; processing a frame allocates
 // nothing.
@@ -19,6 +20,7 @@
 #include "fsw_app/camera_task.hpp"
 #include "fsw_app/frame_ring.hpp"
 #include "fsw_app/lcm_hub.hpp"
+#include "fsw_app/pose_history.hpp"
 #include "hal/clock.hpp"
 #include "hrp/estimator_health_t.hpp"
 #include "hrp/handrail_estimate_t.hpp"
@@ -39,6 +41,9 @@ struct EstimatorCounters {
   // The longest time from a frame's capture to its published result: a
   // host that stalls the estimator thread shows here.
   std::int64_t longest_latency_us = 0;
+  // Frames with no pose at their capture time (none yet, too old, across a
+  // gap in the filter's poses, lost): not placed in the world.
+  std::uint64_t without_pose = 0;
 };
 
 class EstimatorTask {
@@ -79,18 +84,17 @@ class EstimatorTask {
   ClockTime time_;
   estimator::HandrailDetector detector_;
   estimator::HandrailTracker tracker_;
-  Mailbox<hrp::robot_pose_t> pose_box_;
+  PoseHistory poses_;
   Publisher<hrp::handrail_estimate_t> estimate_pub_;
   Publisher<hrp::estimator_health_t> health_pub_;
   std::vector<estimator::CloudPoint> cloud_points_;
   hrp::handrail_estimate_t estimate_{};
-  hrp::robot_pose_t pose_{};
   std::uint64_t seen_ = 0;
   // Processing times of the last kWindow frames.
   static constexpr int kWindow = 64;
   std::array<std::int32_t, kWindow> times_{};
   int n_times_ = 0, next_time_ = 0;
-  std::atomic<std::uint64_t> processed_{0}, misses_{0}, found_{0};
+  std::atomic<std::uint64_t> processed_{0}, misses_{0}, found_{0}, without_pose_{0};
   std::atomic<std::int64_t> longest_latency_us_{0};
   std::int64_t last_health_us_ = 0;
   std::atomic<bool> running_{false};
