@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "allocation_counter.hpp"
@@ -131,6 +132,44 @@ void test_drops_a_frame_the_processing_refuses(void**) {
                    static_cast<int>(tof::ProcessStatus::kModeNotCalibrated));
 }
 
+// A header's imager temperature far from the calibration's reference (a
+// corrupt header, a failing sensor) would shift every depth by the drift
+// correction with every pixel valid: the frame is dropped and counted,
+// named; a frame at a cabin's temperature after it goes through.
+void test_drops_a_frame_at_an_implausible_temperature(void**) {
+  const tof::Calibration cal = calibration();
+  hal::ManualClock clock;
+  pico_flexx::RawDepthPipeline pipeline(cal, pico_flexx::PipelineConfig{}, clock);
+  Recorder recorder;
+  pipeline.set_listener(&recorder);
+  static tof::RawFrame raw;
+  make_frame(cal, 1.0, 500.0, &raw);
+  for (float t_c : {300.0f, -60.0f, std::numeric_limits<float>::quiet_NaN()}) {
+    raw.sensor_temperature_c = t_c;
+    assert_int_equal(static_cast<int>(pipeline.on_raw_frame(raw)),
+                     static_cast<int>(pico_flexx::PipelineStatus::kDropped));
+  }
+  assert_int_equal(recorder.frames, 0);
+  pico_flexx::PipelineCounts c = pipeline.counts();
+  assert_int_equal(c.frames_dropped, 3);
+  assert_int_equal(static_cast<int>(c.last_drop),
+                   static_cast<int>(tof::ProcessStatus::kImplausibleTemperature));
+  assert_string_equal(tof::to_string(tof::ProcessStatus::kImplausibleTemperature),
+                      "IMPLAUSIBLE_TEMPERATURE");
+  raw.sensor_temperature_c = static_cast<float>(cal.reference_temperature_c) + 30.0f;
+  assert_int_equal(static_cast<int>(pipeline.on_raw_frame(raw)),
+                   static_cast<int>(pico_flexx::PipelineStatus::kOk));
+  assert_int_equal(recorder.frames, 1);
+  c = pipeline.counts();
+  assert_int_equal(c.frames_delivered, 1);
+  // A limit that is no limit is refused at start-up.
+  pico_flexx::PipelineConfig bad;
+  bad.processing.max_temperature_offset_k = 0.0f;
+  pico_flexx::RawDepthPipeline refused(cal, bad, clock);
+  assert_int_not_equal(static_cast<int>(refused.init_status()),
+                       static_cast<int>(pico_flexx::PipelineStatus::kOk));
+}
+
 void test_refuses_bad_config(void**) {
   hal::ManualClock clock;
   pico_flexx::PipelineConfig config;
@@ -203,6 +242,7 @@ int main() {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_delivers_and_counts),
       cmocka_unit_test(test_drops_a_frame_the_processing_refuses),
+      cmocka_unit_test(test_drops_a_frame_at_an_implausible_temperature),
       cmocka_unit_test(test_refuses_bad_config),
       cmocka_unit_test(test_start_up_refuses_missing_and_malformed_files),
       cmocka_unit_test(test_no_allocation_per_frame),

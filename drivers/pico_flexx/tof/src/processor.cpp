@@ -19,6 +19,8 @@ const char* to_string(ProcessStatus status) {
       return "MODE_NOT_CALIBRATED";
     case ProcessStatus::kNotInitialized:
       return "NOT_INITIALIZED";
+    case ProcessStatus::kImplausibleTemperature:
+      return "IMPLAUSIBLE_TEMPERATURE";
   }
   return "UNKNOWN";
 }
@@ -74,7 +76,8 @@ ProcessStatus Processor::init(const Calibration& cal) {
   const ProcessingConfig& c = config_;
   if (!(c.min_range_m > 0.0f && c.min_range_m < c.max_range_m && c.max_range_m <= 20.0f) ||
       !(c.noise_cutoff_m > 0.0f) || !(c.min_amplitude_dn >= 0.0f) || !(c.unwrap_sigmas > 0.0f) ||
-      !(c.unwrap_min_tolerance_m > 0.0f && c.unwrap_min_tolerance_m <= c.unwrap_max_tolerance_m)) {
+      !(c.unwrap_min_tolerance_m > 0.0f && c.unwrap_min_tolerance_m <= c.unwrap_max_tolerance_m) ||
+      !(c.max_temperature_offset_k > 0.0f && c.max_temperature_offset_k <= 200.0f)) {
     return ProcessStatus::kBadConfig;
   }
   frequency_count_ = cal.frequency_count;
@@ -156,6 +159,10 @@ void Processor::ray(std::size_t pixel, float* x, float* y, float* z) const {
 ProcessStatus Processor::process(const RawFrame& raw, hal::DepthFrame* out) {
   if (init_status_ != ProcessStatus::kOk) return ProcessStatus::kNotInitialized;
   if (frequency_count(raw.mode) > frequency_count_) return ProcessStatus::kModeNotCalibrated;
+  if (!(std::fabs(raw.sensor_temperature_c - reference_temperature_c_) <=
+        config_.max_temperature_offset_k)) {
+    return ProcessStatus::kImplausibleTemperature;
+  }
   const float temperature_offset_m = static_cast<float>(
       temperature_drift_m_per_k_ * (raw.sensor_temperature_c - reference_temperature_c_));
   phase_pass(raw, temperature_offset_m);

@@ -47,14 +47,23 @@ struct ProcessingConfig {
   // neighbour agrees with, beside mixed returns or a jump, is dropped as
   // flying too (an edge's mixed pixels two or three together).
   bool strand_filter = true;
+  // A frame whose imager temperature lies further than this from the
+  // calibration's reference is refused: the drift correction (about
+  // 0.9 mm/K) is a straight line measured near the reference, and a
+  // header saying 300 deg C would move a wall at 1 m by a quarter metre
+  // with every pixel valid. 45 K around a 25 deg C reference is -20 to
+  // 70 deg C, the imager's die in any cabin the camera works in.
+  float max_temperature_offset_k = 45.0f;
 };
 
 enum class ProcessStatus : std::uint8_t {
   kOk,
-  kBadCalibration,     // init: check_calibration failed
-  kBadConfig,          // init: a limit out of order, or the tolerance too wide to unwrap
-  kModeNotCalibrated,  // a MODE_9 frame with a one-frequency calibration
-  kNotInitialized,     // process() on a processor whose init failed
+  kBadCalibration,          // init: check_calibration failed
+  kBadConfig,               // init: a limit out of order, or the tolerance too wide to unwrap
+  kModeNotCalibrated,       // a MODE_9 frame with a one-frequency calibration
+  kNotInitialized,          // process() on a processor whose init failed
+  kImplausibleTemperature,  // the frame's imager temperature is not finite or lies further
+                            // than max_temperature_offset_k from the reference
 };
 const char* to_string(ProcessStatus status);
 
