@@ -1,6 +1,8 @@
 #include "pico_flexx_device.hpp"
 
+#include <chrono>
 #include <cstddef>
+#include <cstdint>
 
 #include "hal/use_case.hpp"
 #include "tof/raw_frame.hpp"
@@ -13,9 +15,25 @@ royale::CameraStatus from_hal(hal::CameraStatus status) {
   return static_cast<royale::CameraStatus>(static_cast<int>(status));
 }
 
-// This camera has one stream per use case; 0 names it (as royale's
-// single-stream convention has it), and so does every frame.
-constexpr royale::StreamId kStream = 0;
+// This camera has one stream per use case. Its frames carry royale's id
+// for a use case's first stream (0xdefa: never 0, which royale's calls
+// take as "the only stream"); a call may name it either way.
+constexpr royale::StreamId kStream = 0xdefa;
+
+bool names_the_stream(royale::StreamId id) {
+  return id == 0 || id == kStream;
+}
+
+// royale stamps a frame with its capture time since the 1970 epoch. The
+// driver's is on the host's monotonic clock: the two clocks' difference,
+// read now, moves it there (to the microsecond while no one steps the
+// system clock between the capture and now).
+std::int64_t epoch_us_of(std::int64_t monotonic_us, const hal::Clock& clock) {
+  const std::int64_t system_now_us = std::chrono::duration_cast<std::chrono::microseconds>(
+                                         std::chrono::system_clock::now().time_since_epoch())
+                                         .count();
+  return monotonic_us + (system_now_us - clock.now_us());
+}
 
 constexpr int kDepthDataVersion = 1;
 
@@ -41,6 +59,14 @@ royale::CameraStatus PicoFlexxDevice::initialize() {
   data_.exposureTimes.reserve(2);  // one per modulation frequency, at most two
   const hal::CameraStatus r = camera_.register_data_listener(this);
   if (r != hal::CameraStatus::kSuccess) return from_hal(r);
+  // As royale: the first use case the camera offers, whatever the camera
+  // ran before.
+  std::size_t count = 0;
+  const hal::UseCase* all = hal::use_cases(&count);
+  if (count > 0) {
+    const hal::CameraStatus u = camera_.set_use_case(all[0].name);
+    if (u != hal::CameraStatus::kSuccess) return from_hal(u);
+  }
   initialized_ = true;
   return royale::CameraStatus::SUCCESS;
 }
@@ -90,7 +116,7 @@ royale::CameraStatus PicoFlexxDevice::getFrameRate(uint16_t& frameRate) const {
 royale::CameraStatus PicoFlexxDevice::setExposureTime(uint32_t exposureTime,
                                                       royale::StreamId streamId) {
   if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
-  if (streamId != kStream) return royale::CameraStatus::INVALID_VALUE;
+  if (!names_the_stream(streamId)) return royale::CameraStatus::INVALID_VALUE;
   // The camera refuses it while automatic: EXPOSURE_MODE_INVALID, as royale.
   return from_hal(camera_.set_exposure_time(exposureTime));
 }
@@ -98,7 +124,7 @@ royale::CameraStatus PicoFlexxDevice::setExposureTime(uint32_t exposureTime,
 royale::CameraStatus PicoFlexxDevice::setExposureMode(royale::ExposureMode exposureMode,
                                                       royale::StreamId streamId) {
   if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
-  if (streamId != kStream) return royale::CameraStatus::INVALID_VALUE;
+  if (!names_the_stream(streamId)) return royale::CameraStatus::INVALID_VALUE;
   const hal::ExposureMode mode = exposureMode == royale::ExposureMode::AUTOMATIC
                                      ? hal::ExposureMode::kAutomatic
                                      : hal::ExposureMode::kManual;
@@ -110,7 +136,7 @@ royale::CameraStatus PicoFlexxDevice::setExposureMode(royale::ExposureMode expos
 royale::CameraStatus PicoFlexxDevice::getExposureMode(royale::ExposureMode& exposureMode,
                                                       royale::StreamId streamId) const {
   if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
-  if (streamId != kStream) return royale::CameraStatus::INVALID_VALUE;
+  if (!names_the_stream(streamId)) return royale::CameraStatus::INVALID_VALUE;
   exposureMode = exposure_mode_;
   return royale::CameraStatus::SUCCESS;
 }
@@ -118,7 +144,7 @@ royale::CameraStatus PicoFlexxDevice::getExposureMode(royale::ExposureMode& expo
 royale::CameraStatus PicoFlexxDevice::getExposureLimits(
     royale::Pair<uint32_t, uint32_t>& exposureLimits, royale::StreamId streamId) const {
   if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
-  if (streamId != kStream) return royale::CameraStatus::INVALID_VALUE;
+  if (!names_the_stream(streamId)) return royale::CameraStatus::INVALID_VALUE;
   const hal::UseCase* current = nullptr;
   const hal::CameraStatus s = camera_.current_use_case(&current);
   if (s != hal::CameraStatus::kSuccess) return from_hal(s);
@@ -210,7 +236,7 @@ void PicoFlexxDevice::on_new_data(const hal::DepthFrame& frame) {
     q.grayValue = p.gray_value;
     q.depthConfidence = p.confidence;
   }
-  data_.timeStamp = std::chrono::microseconds(frame.capture_time_us);
+  data_.timeStamp = std::chrono::microseconds(epoch_us_of(frame.capture_time_us, clock_));
   data_.width = static_cast<uint16_t>(frame.width);
   data_.height = static_cast<uint16_t>(frame.height);
   const int frequencies = camera_.delivering_frequencies();

@@ -1,5 +1,6 @@
 #include "pico_flexx/royale_depth_camera.hpp"
 
+#include <chrono>
 #include <royale.hpp>
 
 namespace pico_flexx {
@@ -15,6 +16,18 @@ hal::CameraStatus to_hal(royale::CameraStatus status) {
 
 bool ok(royale::CameraStatus status) {
   return status == royale::CameraStatus::SUCCESS;
+}
+
+// A stamp up to a second before its arrival is on the host's own clock.
+constexpr std::int64_t kSameClockUs = 1'000'000;
+
+// The system clock's reading less the host's monotonic one, now (whose
+// monotonic time is `host_now_us`).
+std::int64_t system_minus_host_us(std::int64_t host_now_us) {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+             .count() -
+         host_now_us;
 }
 
 }  // namespace
@@ -206,7 +219,16 @@ void RoyaleDepthCamera::on_depth_data(const royale::DepthData* data) {
     malformed_.fetch_add(1);
     return;
   }
-  const std::int64_t stamp_us = static_cast<std::int64_t>(data->timeStamp.count());
+  // royale documents its stamps as time since the 1970 epoch (the system
+  // clock): a stamp that is not already on the host's monotonic clock is
+  // moved there by the two clocks' difference now, exactly for a stamp
+  // that is on the system clock. One on yet another clock (a camera's own
+  // counter) lands far from its arrival and is mapped by the least delay.
+  const std::int64_t raw_stamp_us = static_cast<std::int64_t>(data->timeStamp.count());
+  const bool on_host_clock =
+      raw_stamp_us <= arrival_us && arrival_us - raw_stamp_us <= kSameClockUs;
+  const std::int64_t stamp_us =
+      on_host_clock ? raw_stamp_us : raw_stamp_us - system_minus_host_us(arrival_us);
   hal::DepthFrame frame;
   frame.frame_id = ++frame_id_;
   frame.capture_time_us = clock_map_.to_host_us(stamp_us, arrival_us);

@@ -18,8 +18,9 @@ using Vector = std::vector<T>;
 template <typename A, typename B>
 using Pair = std::pair<A, B>;
 
-// A use case's stream. This camera has one stream per use case; as in
-// royale, 0 names it in the calls that take a stream id.
+// A use case's stream. This camera has one stream per use case; its frames
+// carry 0xdefa (royale's id for a use case's first stream), and as in
+// royale, 0 also names it in the calls that take a stream id.
 using StreamId = std::uint16_t;
 
 }  // namespace royale

@@ -21,7 +21,7 @@ struct DepthPoint {
 
 struct DepthData {
   int version;                                // of this structure's layout
-  std::chrono::microseconds timeStamp;        // when the frame was captured
+  std::chrono::microseconds timeStamp;        // capture time since the 1970 epoch
   royale::StreamId streamId;                  // the stream that produced it
   uint16_t width;                             // points per row
   uint16_t height;                            // rows
