@@ -171,13 +171,14 @@ void test_holds_without_a_fresh_filter_pose(void**) {
   loop.pose_source = hrp::robot_pose_t::SOURCE_TRUTH;
   holds("pose from the truth");
   loop.pose_source = hrp::robot_pose_t::SOURCE_FILTER;
-  // 0.15 m per axis is 0.26 m radial: past the 0.25 m bound; 0.1 m flies.
-  loop.pose_position_sigma_m = 0.15;
-  holds("position 0.26 m uncertain");
-  loop.pose_position_sigma_m = 0.1;
-  loop.pose_attitude_sigma_rad = 0.12;  // 0.21 rad radial, 12 deg
-  holds("attitude 12 deg uncertain");
-  loop.pose_attitude_sigma_rad = 0.05;
+  // 0.9 m per axis is 1.56 m radial: past the 1.5 m bound. 0.6 m per
+  // axis (a GP off by a metre) flies.
+  loop.pose_position_sigma_m = 0.9;
+  holds("position 1.56 m uncertain");
+  loop.pose_position_sigma_m = 0.6;
+  loop.pose_attitude_sigma_rad = 0.31;  // 0.54 rad radial, 31 deg
+  holds("attitude 31 deg uncertain");
+  loop.pose_attitude_sigma_rad = 0.1;
   loop.run(0.5, A::DEPLOYING);
   assert_false(loop.out.velocity.hold);
   assert_true(loop.out.status.pose_usable);
