@@ -81,15 +81,15 @@ bool stands_out(const Histogram& h, int b, int step_bins) {
 // an empty bay, with enough pixels. In front of the plane the range runs a
 // face step further: faces closer than that merge into one peak under a
 // metre's depth noise, at a level between them, so a face at the range's
-// end beside one a little further out showed no peak inside it (session
-// 37). Behind the plane it does not: no mount is searched deeper than
-// mount_search_m (handrail_filters.hpp). Each surface lies at the mean of
-// its five bins, deepest first (in a bay view the faces lie behind the
-// bars' fronts and the clutter's tops, so a full list keeps the faces).
-// A maximum closer than a rack's least face step (1 cm) to a better
-// supported one is a tooth of the same face: a noisy face seen obliquely
-// breaks into a comb of maxima 5 mm apart, which filled the list before
-// the faces behind it were reached (a rail's own face among them).
+// end beside one a little further out showed no peak inside it. Behind the
+// plane it does not: no mount is searched deeper than mount_search_m
+// (handrail_filters.hpp). Each surface lies at the mean of its five bins,
+// deepest first (in a bay view the faces lie behind the bars' fronts and
+// the clutter's tops, so a full list keeps the faces). A maximum closer
+// than a rack's least face step (1 cm) to a better supported one is a tooth
+// of the same face: a noisy face seen obliquely breaks into a comb of
+// maxima 5 mm apart, which filled the list before the faces behind it were
+// reached (a rail's own face among them).
 std::uint32_t find_surface_peaks(const Histogram& h, const DetectorConfig& cfg,
                                  std::uint32_t valid_pixels, float peak_m[kMaxSurfacePeaks]) {
   const float min_pixels = cfg.mount_min_fraction * static_cast<float>(valid_pixels);

@@ -5,8 +5,8 @@
 // publishes them in log order into fsw_app's LocalizationTask on a clock
 // set from the log's timestamps, and reports what the filter made of each
 // handrail estimate and how far its pose was from the truth. A filter change
-// can then be judged on the exact inputs of a run that went wrong (session
-// 39 found a perch's 0.5 m divergence along the bar this way).
+// can then be judged on the exact inputs of a run that went wrong (a
+// perch's 0.5 m divergence along the bar was found this way).
 #include <lcm/lcm-cpp.hpp>
 
 #include <array>

@@ -3,8 +3,8 @@
 // frames in each handrail state, and for the frames with both ends seen the
 // range of the bar's measured length and the ISS type each matched. One
 // handrail in view should give one type; a mix says the detector measured
-// some other structure, or part of the bar, as a whole handrail (session
-// 25's HIL run saw the 0.55 m round rail reported as 8.5 in on its first
+// some other structure, or part of the bar, as a whole handrail (a HIL
+// run once saw the 0.55 m round rail reported as 8.5 in on its first
 // frames, and the filter took it). A receiver on HANDRAIL_ESTIMATE (LcmHub
 // delivers to it on the dispatcher thread); fixed memory.
 #include <cstdint>
