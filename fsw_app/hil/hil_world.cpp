@@ -16,7 +16,7 @@ constexpr int kOpenStopRaw = -500;
 constexpr int kClosedCounts = 3000;
 constexpr double kOpenSpanM = 0.08;
 // Within this of the bar's centre line the closing fingers take the bar
-// (the gripper's own tolerance is larger; the issue asks for 1 cm).
+// (the gripper's own tolerance is larger; the requirement is 1 cm).
 constexpr double kCaptureRadiusM = 0.03;
 
 double bar_width_m(const sim_hal::Handrail& h) {

@@ -2,7 +2,7 @@
 // robot's ToF processing, against the exact ranges. Bias and noise at 0.3,
 // 0.5, 1, 2 and 3.5 m in both kinds of use case (the data sheet: noise <=
 // 1 % of distance at 0.5..4 m in MODE_9 at 5 fps, <= 2 % at 0.1..1 m in
-// MODE_5 at 45 fps; the issue: bias <= 2 mm after calibration), and MODE_9
+// MODE_5 at 45 fps; required here: bias <= 2 mm after calibration), and MODE_9
 // unwrapping across both frequencies' ambiguity distances (wrong unwraps
 // <= 0.01 % of valid pixels up to 4 m). Prints the table the README quotes.
 #include <cmath>

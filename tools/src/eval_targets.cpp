@@ -39,7 +39,7 @@ std::string count_of(int n, int of, bool with_percent) {
   return buf;
 }
 
-// One figure of the issue: how to show it, its target, and the test.
+// One figure with a target: how to show it, its target, and the test.
 struct Figure {
   const char* key;    // JSON name
   int json_decimals;  // 0 for a count
@@ -156,7 +156,7 @@ std::string targets_section(const std::vector<TargetColumn>& columns,
      << targets_markdown(columns);
   const auto flat = by_surface_length.find({"flat wall", "no target"});
   if (flat != by_surface_length.end()) {
-    md << "\nFlat walls (the issue asks them no worse than before): " << flat->second.false_found
+    md << "\nFlat walls (to stay no worse than the default detector): " << flat->second.false_found
        << " of " << flat->second.frames << " frames without a handrail with a false detection.\n";
   }
   return md.str();

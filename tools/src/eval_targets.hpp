@@ -19,7 +19,7 @@ struct TargetColumn {
   Tally no_target;   // those of its frames without a target
 };
 
-// The figures the issue names, from one column.
+// The figures with targets, from one column.
 struct TargetFigures {
   int reach_found = 0, reach_frames = 0;          // frames in reach: target found / all
   int no_target_false = 0, no_target_frames = 0;  // frames without a target: false / all

@@ -10,7 +10,7 @@
 //                                 about world axes, applied after q)
 //   dbg     body frame, rad/s     bg_true = bg + dbg
 //   dba     body frame, m/s^2     ba_true = ba + dba
-// The attitude error lives in the world frame (the choice); the
+// The attitude error lives in the world frame (a choice of the design); the
 // paper's eq. 10 writes its Jacobian for an error in the camera frame, which
 // is R_cam_world times ours (handrail_update.hpp does that mapping).
 //
