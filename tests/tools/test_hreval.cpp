@@ -116,10 +116,11 @@ void test_a_bad_frame_count_is_refused(void**) {
   assert_int_not_equal(access((out + "/report.md").c_str(), F_OK), 0);
 }
 
+// (Named as a newcomer would, without its folder and suffix.)
 void test_a_scenario_without_failures_has_no_worst_frame(void**) {
   const std::string out = g_dir + "/clean";
-  const Result r = run({"--out", out, "--max-frames", "2",
-                        testing_support::source_path("sim_hal/scenarios/table2-iss.json")});
+  const Result r = run({"--out", out, "--max-frames", "2", "--scenarios",
+                        testing_support::source_path("sim_hal/scenarios"), "table2-iss"});
   assert_int_equal(r.exit_status, 0);
   const std::string row =
       failure_row(testing_support::read_text(out + "/report.md"), "table2-iss", "proposed");

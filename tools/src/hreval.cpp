@@ -51,10 +51,11 @@ using tools::table2_rows;
 
 void usage(FILE* out) {
   std::fprintf(out,
-               "usage: hreval [options] [SCENARIO.json ...]\n"
+               "usage: hreval [options] [SCENARIO ...]\n"
                "Renders scenarios with the simulated Pico Flexx, runs the proposed and the\n"
                "basic detector on every frame, and reports accuracy against ground truth.\n"
-               "With no scenario files, runs every scenario in the scenario folder.\n\n"
+               "A SCENARIO is a scenario file, or the name of one in the scenario folder\n"
+               "(table2-iss for DIR/table2-iss.json). With none, runs every scenario there.\n\n"
                "options:\n"
                "  --scenarios DIR   scenario folder (default %s)\n"
                "  --out DIR         where report.md and the charts go (default hreval-out)\n"
@@ -102,6 +103,16 @@ bool is_table2(const std::string& name) {
 }
 bool is_new(const ScenarioResult& r) {
   return r.surface != "flat wall";
+}
+
+// A scenario named without its folder and suffix (table2-iss) is the
+// scenario folder's file of that name; a path that exists stays as given.
+std::string resolve_scenario(const std::string& arg, const std::string& dir) {
+  struct stat st {};
+  if (stat(arg.c_str(), &st) == 0 || arg.find('/') != std::string::npos) return arg;
+  const bool has_suffix = arg.size() > 5 && arg.compare(arg.size() - 5, 5, ".json") == 0;
+  const std::string named = dir + "/" + arg + (has_suffix ? "" : ".json");
+  return stat(named.c_str(), &st) == 0 ? named : arg;
 }
 
 std::vector<std::string> list_scenarios(const std::string& dir) {
@@ -178,6 +189,7 @@ int main(int argc, char** argv) {
       files.push_back(a);
     }
   }
+  for (std::string& f : files) f = resolve_scenario(f, scenario_dir);
   estimator::DetectorConfig base_cfg;
   if (!config_path.empty()) {
     std::string config_error;
