@@ -56,9 +56,10 @@ void test_interpolates_between_the_poses_around_a_time(void**) {
   const Eigen::Isometry3d truth = true_pose(t);
   assert_true((T.translation() - truth.translation()).norm() < 1e-9);
   assert_true(Eigen::AngleAxisd(T.linear().transpose() * truth.linear()).angle() < 1e-6);
-  // The newest pose at the time the last frame arrives would be 0.49 s
-  // later: 49 mm and 14 deg away.
-  assert_true((true_pose(1'992'000).translation() - truth.translation()).norm() > 0.04);
+  // Not the newest pose, which is 0.49 s later: 49 mm and 14 deg away.
+  Eigen::Isometry3d newest;
+  assert_int_equal(h.pose_at(1'992'000, &newest), PoseAtStatus::kNewest);
+  assert_true((newest.translation() - T.translation()).norm() > 0.04);
   // Exactly on a held pose.
   assert_int_equal(h.pose_at(1'016'000, &T), PoseAtStatus::kInterpolated);
   assert_true((T.translation() - true_pose(1'016'000).translation()).norm() < 1e-12);

@@ -29,4 +29,10 @@ class ManualClock final : public Clock {
   std::int64_t now_us_;
 };
 
+// The system (wall) clock's reading since the 1970 epoch less `clock`'s,
+// both read now, in microseconds: what moves a time on `clock` to epoch
+// time (add it) or back (subtract it). Exact while no one steps the system
+// clock between the stamp and the reading.
+std::int64_t system_minus_clock_us(const Clock& clock);
+
 }  // namespace hal

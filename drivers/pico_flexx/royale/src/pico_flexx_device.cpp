@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "hal/clock.hpp"
 #include "hal/use_case.hpp"
 #include "tof/raw_frame.hpp"
 
@@ -24,15 +25,10 @@ bool names_the_stream(royale::StreamId id) {
   return id == 0 || id == kStream;
 }
 
-// royale stamps a frame with its capture time since the 1970 epoch. The
-// driver's is on the host's monotonic clock: the two clocks' difference,
-// read now, moves it there (to the microsecond while no one steps the
-// system clock between the capture and now).
+// royale stamps a frame with its capture time since the 1970 epoch; the
+// driver's is on the host's monotonic clock.
 std::int64_t epoch_us_of(std::int64_t monotonic_us, const hal::Clock& clock) {
-  const std::int64_t system_now_us = std::chrono::duration_cast<std::chrono::microseconds>(
-                                         std::chrono::system_clock::now().time_since_epoch())
-                                         .count();
-  return monotonic_us + (system_now_us - clock.now_us());
+  return monotonic_us + hal::system_minus_clock_us(clock);
 }
 
 constexpr int kDepthDataVersion = 1;

@@ -21,15 +21,6 @@ bool ok(royale::CameraStatus status) {
 // A stamp up to a second before its arrival is on the host's own clock.
 constexpr std::int64_t kSameClockUs = 1'000'000;
 
-// The system clock's reading less the host's monotonic one, now (whose
-// monotonic time is `host_now_us`).
-std::int64_t system_minus_host_us(std::int64_t host_now_us) {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-             .count() -
-         host_now_us;
-}
-
 }  // namespace
 
 class RoyaleDepthCamera::Listener final : public royale::IDepthDataListener {
@@ -228,7 +219,7 @@ void RoyaleDepthCamera::on_depth_data(const royale::DepthData* data) {
   const bool on_host_clock =
       raw_stamp_us <= arrival_us && arrival_us - raw_stamp_us <= kSameClockUs;
   const std::int64_t stamp_us =
-      on_host_clock ? raw_stamp_us : raw_stamp_us - system_minus_host_us(arrival_us);
+      on_host_clock ? raw_stamp_us : raw_stamp_us - hal::system_minus_clock_us(clock_);
   hal::DepthFrame frame;
   frame.frame_id = ++frame_id_;
   frame.capture_time_us = clock_map_.to_host_us(stamp_us, arrival_us);
