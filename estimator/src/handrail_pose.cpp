@@ -44,6 +44,29 @@ void inlier_extent(const OrganizedCloud& cloud, const IndexList& inliers,
   *t_max = hi;
 }
 
+// The extent of the inliers that stand at the bar's own height (their
+// distance to the surface at least min_height_m): an inlier lower than the
+// bar's back is the surface beside or beyond it, which a line seen at a
+// slant collects in its 2-D neighbourhood, and it says nothing about where
+// the bar ends. Keeps t_min and t_max as they are when no inlier is that
+// high.
+void bar_pixel_extent(const OrganizedCloud& cloud, const IndexList& inliers,
+                      const float* distance_m, float min_height_m, const Eigen::Vector3f& origin,
+                      const Eigen::Vector3f& axis, float* t_min, float* t_max) {
+  const float a0 = axis.dot(origin);
+  float lo = INFINITY, hi = -INFINITY;
+  for (std::int32_t i : inliers) {
+    if (!(distance_m[i] >= min_height_m)) continue;
+    const CloudPoint& p = cloud.points[i];
+    const float t = axis.x() * p.x_m + axis.y() * p.y_m + axis.z() * p.z_m - a0;
+    lo = t < lo ? t : lo;
+    hi = t > hi ? t : hi;
+  }
+  if (lo > hi) return;
+  *t_min = lo;
+  *t_max = hi;
+}
+
 // The gap pixels along [t_min, t_max] and within band_m across the line,
 // into ws.band in the gap list's order. Four at a time: the points gathered
 // by a transpose, both coordinates computed with the same operations in
@@ -218,8 +241,14 @@ bool estimate_center_line(const OrganizedCloud& cloud, const DetectorConfig& cfg
   const float b_lo = v[lo];
   std::nth_element(v, v + hi, v + m);
   const float offset_across = 0.5f * (b_lo + v[hi]);
-  // The inliers' extent along the refined axis.
+  // The inliers' extent along the refined axis; bar first, that of the
+  // bar's own pixels (within its depth of the front).
   inlier_extent(cloud, inliers, origin, axis, &t_min, &t_max);
+  if (cfg.bar_first) {
+    bar_pixel_extent(cloud, inliers, ws.signed_distance_m.get(),
+                     front - cfg.handrail.bar_depth_m - cfg.gap_margin_m, origin, axis, &t_min,
+                     &t_max);
+  }
 
   line->axis = axis;
   line->wall_normal = normal;
@@ -408,6 +437,12 @@ void detect_ends(const OrganizedCloud& cloud, const DetectorConfig& cfg, const P
     int m = 0;
     float t_inner = t_end;
     for (std::int32_t i : inliers) {
+      // Bar first, only the bar's own pixels (the surface beside a bar
+      // seen at a slant is no place to start).
+      if (front != nullptr &&
+          !(ws.signed_distance_m[i] >= front_at(cloud.points[i]) - depth_below_front)) {
+        continue;
+      }
       const float t = (point_of(cloud, i) - line.point).dot(line.axis);
       if (std::fabs(t - t_end) < 0.02f) {
         ru += i % w;
