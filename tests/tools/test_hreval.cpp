@@ -101,6 +101,21 @@ void test_the_worst_frame_is_named_with_its_reason_and_drawn(void**) {
   assert_int_equal(h, 8 + 2 * 20 + 2 * (513 + 6) + 6);
 }
 
+// For a report kept in the repository: the worst frame named with its
+// reason, no picture written and no link to one.
+void test_without_pictures_the_worst_frame_is_named_only(void**) {
+  const std::string out = g_dir + "/no-pictures";
+  const Result r = run({"--out", out, "--no-pictures", write_unfindable_scenario()});
+  assert_int_equal(r.exit_status, 0);
+  const std::string row =
+      failure_row(testing_support::read_text(out + "/report.md"), "no-wall", "proposed");
+  if (row.find("| 4: 0-3 |") == std::string::npos ||
+      row.find("| 2: missed, ") == std::string::npos || row.find("worst/") != std::string::npos) {
+    fail_msg("unexpected failures row: %s", row.c_str());
+  }
+  assert_int_not_equal(access((out + "/worst").c_str(), F_OK), 0);
+}
+
 // A frame count that is not one (it was: "abc" ran 0 frames, wrote a
 // report of nan over the last one, exit 0): exit 2 naming it, and no
 // report written.
@@ -248,6 +263,7 @@ int main(int argc, char** argv) {
   g_dir = scratch.path();
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_the_worst_frame_is_named_with_its_reason_and_drawn),
+      cmocka_unit_test(test_without_pictures_the_worst_frame_is_named_only),
       cmocka_unit_test(test_a_bad_frame_count_is_refused),
       cmocka_unit_test(test_a_scenario_without_failures_has_no_worst_frame),
       cmocka_unit_test(test_the_targets_table_pools_the_rack_walls),

@@ -60,6 +60,8 @@ void usage(FILE* out) {
                "  --scenarios DIR   scenario folder (default %s)\n"
                "  --out DIR         where report.md and the charts go (default hreval-out)\n"
                "  --max-frames N    at most N frames per scenario (for a quick look)\n"
+               "  --no-pictures     no picture of each scenario's worst frame (for a report\n"
+               "                    kept in the repository; the table still names the frame)\n"
                "  --true-length     configure the detector for each scenario's first handrail's\n"
                "                    bar length alone (default: every ISS length)\n"
                "  --camera depth|raw|both\n"
@@ -133,7 +135,7 @@ std::vector<std::string> list_scenarios(const std::string& dir) {
 int main(int argc, char** argv) {
   std::string scenario_dir = HRP_SCENARIO_DIR, out_dir = "hreval-out", config_path;
   long max_frames = -1;
-  bool true_length = false;
+  bool true_length = false, pictures = true;
   long long seed_offset = 0;
   std::vector<std::string> paths = {"depth"};
   std::vector<std::string> files, candidate_paths;
@@ -163,6 +165,8 @@ int main(int argc, char** argv) {
       max_frames = static_cast<long>(n);
     } else if (a == "--true-length") {
       true_length = true;
+    } else if (a == "--no-pictures") {
+      pictures = false;
     } else if (a == "--seed-offset") {
       const std::string v = next("--seed-offset");
       char* end = nullptr;
@@ -345,14 +349,17 @@ int main(int argc, char** argv) {
         out.worst_reason = worst.reason();
         const std::string picture = "worst/" + sc.name + ".png";
         const std::string lines = "worst/" + sc.name + ".lines.json";
-        if (tools::make_output_dir(out_dir + "/worst", &error) &&
-            worst.write_picture(out_dir + "/" + picture, out_dir + "/" + lines, sc.name, cfg,
-                                &error)) {
-          out.worst_picture = picture;
-          out.worst_lines = lines;
-        } else {
-          std::fprintf(stderr, "hreval: %s: the worst frame's picture: %s\n", sc.name.c_str(),
-                       error.c_str());
+        // Without pictures the table still names the frame.
+        if (pictures) {
+          if (tools::make_output_dir(out_dir + "/worst", &error) &&
+              worst.write_picture(out_dir + "/" + picture, out_dir + "/" + lines, sc.name, cfg,
+                                  &error)) {
+            out.worst_picture = picture;
+            out.worst_lines = lines;
+          } else {
+            std::fprintf(stderr, "hreval: %s: the worst frame's picture: %s\n", sc.name.c_str(),
+                         error.c_str());
+          }
         }
       }
       const tools::Tally& p = out.method[0].all;
