@@ -27,8 +27,11 @@ std::string commit_of(const std::string& dir) {
   const std::string sha = first_line_of(git + "rev-parse --short HEAD 2>/dev/null");
   if (sha.empty()) return "not a git checkout";
   // Any tracked or untracked change: the figures are not the commit's alone.
-  const std::string changed =
-      first_line_of(git + "status --porcelain --untracked-files=normal 2>/dev/null");
+  // The kept evaluation's own files are output, not input (tools/run
+  // --publish rewrites them before its second run).
+  const std::string changed = first_line_of(git +
+                                            "status --porcelain --untracked-files=normal -- . "
+                                            "':(exclude)estimator/doc/evaluation' 2>/dev/null");
   return "commit " + sha + (changed.empty() ? "" : " (with local changes)");
 }
 
