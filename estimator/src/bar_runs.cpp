@@ -13,7 +13,6 @@ namespace {
 // pixel, the drop from its edge to the surface behind is 3.75 cm or more.
 constexpr float kJumpM = 0.02f;
 
-using run_levels::clamp_noise;
 using run_levels::level_beside_end;
 
 struct RunLimits {
@@ -28,6 +27,9 @@ struct RunLimits {
 void mark_runs_on_line(const OrganizedCloud& cloud, const RunLimits& lim, Workspace& ws,
                        std::int32_t base, int stride, int n, std::uint8_t flag) {
   const float* height_m = ws.signed_distance_m.get() + base;
+  // Twice each pixel's bounded noise, from the distance pass: the jump
+  // test reads two streams of floats instead of the cloud's wider points.
+  const float* widen_m = ws.gap_widen_m.get() + base;
   std::uint8_t* flags = ws.flags.get() + base;
   int first = 0;
   while (first < n) {
@@ -41,7 +43,7 @@ void mark_runs_on_line(const OrganizedCloud& cloud, const RunLimits& lim, Worksp
     while (last + 1 < n) {
       const float next = height_m[(last + 1) * stride];
       const float here = height_m[last * stride];
-      const float jump = kJumpM + 2.0f * clamp_noise(cloud.points[base + last * stride].noise_m);
+      const float jump = kJumpM + widen_m[last * stride];
       if (!(next > -INFINITY) || std::fabs(next - here) > jump) break;
       peak_m = std::max(peak_m, next);
       ++last;

@@ -55,6 +55,7 @@ void build(Scene* s, const std::vector<Feature>& features) {
       CloudPoint& p = s->points[r * kW + c];
       p = CloudPoint{u * z, v * z, z, 0.001f, 100, 200};
       s->ws.signed_distance_m[r * kW + c] = kWallZ - z;
+      s->ws.gap_widen_m[r * kW + c] = 2.0f * p.noise_m;  // as the distance pass leaves it
       s->ws.flags[r * kW + c] = kFlagValid;
     }
   }

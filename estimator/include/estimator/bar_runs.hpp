@@ -29,7 +29,8 @@ float bar_run_min_rise_m(const DetectorConfig& cfg);
 // (one, if the other side shows nothing valid) marks its pixels within the
 // bar's depth of that highest point. Heights are ws.signed_distance_m (to
 // the dominant plane; the run's rise is a difference, so the plane's offset
-// does not matter). Writes ws.side in ascending order and the flags
+// does not matter), and the jump's noise is ws.gap_widen_m, both as
+// gap_distance_test() leaves them. Writes ws.side in ascending order and the flags
 // kFlagCrossX (a row's run), kFlagCrossY (a column's) and kFlagSide.
 void find_bar_runs(const OrganizedCloud& cloud, const DetectorConfig& cfg, const PixelScale& scale,
                    Workspace& ws);
