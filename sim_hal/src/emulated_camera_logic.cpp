@@ -21,6 +21,9 @@ constexpr std::uint64_t kFifoFrames = 45;
 }  // namespace
 
 void EmulatedPicoFlexx::Impl::power_up() {
+  power_up_us = clock->now_us();
+  capture_log = {};
+  captures_logged = 0;
   streaming = false;
   exposure_automatic = false;
   exposure_us = config.exposure_us;
@@ -153,7 +156,7 @@ void EmulatedPicoFlexx::Impl::execute_command(const std::uint8_t* data, std::siz
   reply(ReplyStatus::kUnknownCommand);
 }
 
-void EmulatedPicoFlexx::Impl::begin_frame(std::int64_t now_us) {
+void EmulatedPicoFlexx::Impl::begin_frame(std::int64_t capture_host_us) {
   std::size_t use_case_count = 0;
   const hal::UseCase& use_case = hal::use_cases(&use_case_count)[use_case_index];
   raw.mode = use_case.raw_frames == 9 ? tof::Mode::kMode9 : tof::Mode::kMode5;
@@ -169,7 +172,12 @@ void EmulatedPicoFlexx::Impl::begin_frame(std::int64_t now_us) {
   h.height_px = tof::kHeightPx;
   h.exposure_us = raw.exposure_us;
   h.temperature_centi_c = static_cast<std::int16_t>(raw.sensor_temperature_c * 100.0f);
-  h.capture_time_us = static_cast<std::uint64_t>(now_us);
+  // The camera's clock: time since power-up, config.clock_ppm fast.
+  const std::int64_t since_power_up_us = capture_host_us - power_up_us;
+  h.capture_time_us = static_cast<std::uint64_t>(
+      since_power_up_us +
+      static_cast<std::int64_t>(static_cast<double>(since_power_up_us) * config.clock_ppm * 1e-6));
+  capture_log[captures_logged++ % kCaptureLog] = {sequence, capture_host_us};
   std::uint8_t* payload = frame_bytes.data() + pico_flexx::kFrameHeaderBytes;
   std::memcpy(payload, raw.image(0), h.payload_bytes);
   h.payload_checksum = pico_flexx::fletcher32(payload, h.payload_bytes);
@@ -265,8 +273,11 @@ void EmulatedPicoFlexx::Impl::advance(std::int64_t now_us) {
       backlog = kFifoFrames;
     }
     if (backlog > 0 && !stream_urbs.empty()) {
+      // The oldest frame in the FIFO was read out when it fell due, not now.
+      const std::int64_t capture_host_us =
+          stream_start_us + static_cast<std::int64_t>(frames_due_so_far) * period_us;
       ++frames_due_so_far;
-      begin_frame(now_us);
+      begin_frame(capture_host_us);
     }
   }
   feed_stream();

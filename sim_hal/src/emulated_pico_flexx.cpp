@@ -370,6 +370,17 @@ void EmulatedPicoFlexx::set_reply_delay_us(std::int64_t delay_us) {
   impl_->reply_delay_us = delay_us;
 }
 
+bool EmulatedPicoFlexx::capture_time_of(std::uint32_t sequence, std::int64_t* host_us) const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  for (const auto& entry : impl_->capture_log) {
+    if (impl_->captures_logged > 0 && entry.first == sequence && entry.second != 0) {
+      *host_us = entry.second;
+      return true;
+    }
+  }
+  return false;
+}
+
 EmulatorCounts EmulatedPicoFlexx::counts() const {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   EmulatorCounts c = impl_->counts;

@@ -5,6 +5,7 @@
 #include <linux/ioctl.h>
 #include <linux/usbdevice_fs.h>
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <mutex>
@@ -56,6 +57,13 @@ struct EmulatedPicoFlexx::Impl {
   bool stream_halted = false;
   bool halt_persistent = false;  // CLEAR_HALT does not help, RESET does
   bool silent = false;           // no frames, whatever the host does
+  // The camera's own clock: microseconds since its power-up (the host's
+  // time then), running config.clock_ppm fast; and the host's time of the
+  // newest frames' captures, by sequence number, for tests to compare with.
+  std::int64_t power_up_us = 0;
+  static constexpr std::size_t kCaptureLog = 256;
+  std::array<std::pair<std::uint32_t, std::int64_t>, kCaptureLog> capture_log{};
+  std::size_t captures_logged = 0;
 
   // Replies waiting for a reply transfer: the bytes and when they may go.
   struct PendingReply {
@@ -91,7 +99,7 @@ struct EmulatedPicoFlexx::Impl {
  private:
   void queue_reply(pico_flexx::Command command, std::uint8_t tag, pico_flexx::ReplyStatus status,
                    const std::uint8_t* payload, std::size_t payload_bytes);
-  void begin_frame(std::int64_t now_us);
+  void begin_frame(std::int64_t capture_host_us);
   void feed_stream();
   void feed_replies(std::int64_t now_us);
 };

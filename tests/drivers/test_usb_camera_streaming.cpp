@@ -1,14 +1,19 @@
 // The Pico Flexx USB driver, real libusb code, against the emulated camera
 // under umockdev (usb_camera_rig.hpp), while the link holds: enumeration,
 // commands and their failures, use-case change, streaming without loss and
-// with no allocation per frame, a slow host, corrupt and short frames (each
+// with no allocation per frame, capture times from the camera's clock, a
+// slow host, corrupt and short frames (each
 // counted once), a stream of nothing but corrupt frames, bad headers
 // counted once per frame. The link's faults and their recovery are in
 // test_usb_camera_recovery.cpp.
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "sim_hal/umockdev_preload.hpp"
 #include "usb_camera_rig.hpp"
@@ -157,6 +162,78 @@ void test_streaming_without_loss(void**) {
   assert_true(listener.submitted_in_window.load() > 0);
   assert_true(listener.allocations.load() <= listener.submitted_in_window.load());
   assert_true(c.transfers_submitted > c0.transfers_submitted);
+}
+
+// Capture times from the camera's own clock (its header's stamp, 30 ppm
+// off the host's, counting from its power-up), moved to the host's clock
+// by the least delay to each frame's first transfer: against the
+// emulator's capture times (when each frame fell due at the imager) the
+// median error must be under a millisecond. Midway the listener holds the
+// event thread for 300 ms once: the frames that waited in the camera's
+// FIFO arrive up to 300 ms late and must still carry their capture times.
+class TimingListener final : public pico_flexx::RawFrameListener {
+ public:
+  static constexpr int kKept = 200;  // the emulator keeps its newest 256
+  void on_raw_frame(const pico_flexx::RawFrameInfo& info, const tof::RawFrame& frame) override {
+    const int n = frames++;
+    Frame& f = kept[static_cast<std::size_t>(n % kKept)];
+    f.sequence = info.sequence;
+    f.capture_us = frame.capture_time_us;
+    f.first_transfer_us = info.first_transfer_us;
+    f.info_agrees = info.capture_time_us == frame.capture_time_us &&
+                    info.capture_time_us <= info.first_transfer_us;
+    if (n == hold_at) sleep_ms(300);
+  }
+  struct Frame {
+    std::uint32_t sequence = 0;
+    std::int64_t capture_us = 0, first_transfer_us = 0;
+    bool info_agrees = false;
+  };
+  std::array<Frame, kKept> kept{};
+  std::atomic<int> frames{0};
+  int hold_at = -1;
+};
+
+void test_capture_times_from_the_camera_clock(void**) {
+  pico_flexx::UsbCamera cam(default_config(), g_rig->clock);
+  assert_int_equal(cam.open(), UsbStatus::kOk);
+  TimingListener listener;
+  listener.hold_at = 90;
+  assert_int_equal(cam.start_streaming(&listener), UsbStatus::kOk);
+  assert_true(wait_for([&] { return listener.frames.load() >= 180; }, 15000));
+  assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
+  const int n = std::min(listener.frames.load(), TimingListener::kKept);
+  std::vector<double> error_us, arrival_late_us;
+  int disagree = 0, held_frames = 0, held_ok = 0;
+  for (int k = 0; k < n; ++k) {
+    const TimingListener::Frame& f = listener.kept[static_cast<std::size_t>(k)];
+    std::int64_t truth_us = 0;
+    if (!g_rig->camera->capture_time_of(f.sequence, &truth_us)) continue;
+    disagree += f.info_agrees ? 0 : 1;
+    const double error = static_cast<double>(f.capture_us - truth_us);
+    const double late = static_cast<double>(f.first_transfer_us - truth_us);
+    error_us.push_back(std::fabs(error));
+    arrival_late_us.push_back(late);
+    // The frames that waited in the FIFO through the hold.
+    if (late > 100'000) {
+      ++held_frames;
+      held_ok += std::fabs(error) < 2'000 ? 1 : 0;
+    }
+  }
+  assert_true(error_us.size() >= 150);
+  std::sort(error_us.begin(), error_us.end());
+  std::sort(arrival_late_us.begin(), arrival_late_us.end());
+  const double median_us = error_us[error_us.size() / 2];
+  std::printf(
+      "capture times over %zu frames: |error| median %.0f us, 90th percentile %.0f us, "
+      "max %.0f us (first transfer after capture: median %.0f us, max %.0f us); "
+      "%d frames arrived over 100 ms late, %d of them within 2 ms\n",
+      error_us.size(), median_us, error_us[error_us.size() * 9 / 10], error_us.back(),
+      arrival_late_us[arrival_late_us.size() / 2], arrival_late_us.back(), held_frames, held_ok);
+  assert_int_equal(disagree, 0);
+  assert_true(median_us <= 1'000.0);
+  assert_true(held_frames >= 5);
+  assert_true(held_ok >= held_frames - 1);
 }
 
 // A host too slow to take its frames: the listener holds the event thread
@@ -332,6 +409,7 @@ int main(int, char** argv) {
       cmocka_unit_test(test_command_timeout),
       cmocka_unit_test(test_use_case_change),
       cmocka_unit_test(test_streaming_without_loss),
+      cmocka_unit_test(test_capture_times_from_the_camera_clock),
       cmocka_unit_test(test_slow_host_loses_frames_at_the_camera),
       cmocka_unit_test(test_corrupt_and_short_frames_dropped),
       cmocka_unit_test(test_corrupt_stream_never_lost),

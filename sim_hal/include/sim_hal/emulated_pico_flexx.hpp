@@ -46,6 +46,9 @@ struct EmulatedCameraConfig {
   std::string calibration;  // the raw path's calibration file's bytes
   int use_case_index = 5;   // at power-up: MODE_5_45FPS_500
   std::uint32_t exposure_us = 500;
+  // How fast the camera's own clock (its capture stamps, from power-up)
+  // runs against the host's, in parts per million: a crystal's error.
+  double clock_ppm = 30.0;
 };
 
 struct EmulatorCounts {
@@ -107,6 +110,9 @@ class EmulatedPicoFlexx {
   void set_reply_delay_us(std::int64_t delay_us);
 
   EmulatorCounts counts() const;
+  // The host clock's time at which frame `sequence` was captured (read out
+  // by the imager), for one of the newest 256 frames; false if not known.
+  bool capture_time_of(std::uint32_t sequence, std::int64_t* host_us) const;
   // The device node of the current plug, e.g. /dev/bus/usb/001/002.
   std::string device_node() const;
 

@@ -131,15 +131,25 @@ void UsbCamera::note_stream_completion(const libusb_transfer* t, std::int64_t no
     last_bytes_us_ = now_us;
     bytes_seen_ = true;
   }
+  // A frame's first transfer carries its header: the least delay from the
+  // camera's capture to it is one transfer's time, where the last
+  // transfer's adds the whole frame's (17 ms for MODE_9 at USB 2.0).
+  if (assembler_.between_frames()) frame_first_transfer_us_ = now_us;
   const AssemblyEvent e = assembler_.on_transfer(
       t->buffer, static_cast<std::size_t>(t->actual_length), static_cast<std::size_t>(t->length));
   if (e == AssemblyEvent::kFrameReady) {
+    const FrameHeader& h = assembler_.last_header();
+    const std::int64_t camera_us = static_cast<std::int64_t>(h.capture_time_us);
+    frame_->capture_time_us = clock_map_.to_host_us(camera_us, frame_first_transfer_us_);
     if (listener_ != nullptr) {
       RawFrameInfo info;
-      info.sequence = assembler_.last_header().sequence;
-      info.use_case_index = assembler_.last_header().use_case_index;
+      info.sequence = h.sequence;
+      info.use_case_index = h.use_case_index;
+      info.first_transfer_us = frame_first_transfer_us_;
       info.last_transfer_us = now_us;
-      frame_->capture_time_us = now_us;
+      info.camera_time_us = camera_us;
+      info.capture_time_us = frame_->capture_time_us;
+      info.clock_window_change_us = clock_map_.window_change_us();
       listener_->on_raw_frame(info, *frame_);
     }
     last_frame_us_ = now_us;
@@ -185,6 +195,7 @@ UsbStatus UsbCamera::start_streaming(RawFrameListener* listener) {
   if (handle_ == nullptr) return UsbStatus::kNotOpen;
   listener_ = listener;
   assembler_.restart();
+  clock_map_.reset();
   ReplyView reply;
   UsbStatus s =
       command_locked(Command::kStartStream, nullptr, 0, &reply, config_.command_timeout_ms);
@@ -343,6 +354,7 @@ void UsbCamera::climb_ladder(std::int64_t now_us, LostReason cause) {
       }
       s = map_error(r);
       assembler_.restart();  // the camera restarted its sequence
+      clock_map_.reset();    // and its clock
       if (s == UsbStatus::kOk) s = apply_settings();
       if (s == UsbStatus::kOk)
         s = command_locked(Command::kStartStream, nullptr, 0, &reply, config_.command_timeout_ms);
@@ -406,6 +418,7 @@ UsbStatus UsbCamera::resume_stream(std::int64_t now_us) {
   gone_pending_ = false;
   stalled_pending_ = failed_pending_ = false;
   assembler_.restart();  // a camera powered up or restarted counts from 0
+  clock_map_.reset();    // its clock too
   rung_ = 0;
   consecutive_bad_frames_ = 0;
   last_frame_us_ = now_us;

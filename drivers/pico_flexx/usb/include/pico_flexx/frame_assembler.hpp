@@ -65,6 +65,8 @@ class FrameAssembler {
   // sequence check goes on.
   void abandon_frame() { phase_ = Phase::kBetweenFrames; }
 
+  // Whether the next transfer may start a frame (no frame in progress).
+  bool between_frames() const { return phase_ == Phase::kBetweenFrames; }
   const AssemblerCounts& counts() const { return counts_; }
   const FrameHeader& last_header() const { return header_; }
   tof::RawFrame* target() { return target_; }

@@ -36,6 +36,7 @@
 #include <thread>
 
 #include "hal/clock.hpp"
+#include "pico_flexx/capture_clock_map.hpp"
 #include "pico_flexx/frame_assembler.hpp"
 #include "pico_flexx/usb_protocol.hpp"
 #include "tof/raw_frame.hpp"
@@ -158,7 +159,14 @@ struct UsbCounters {
 struct RawFrameInfo {
   std::uint32_t sequence = 0;
   std::uint8_t use_case_index = 0;
-  std::int64_t last_transfer_us = 0;  // when its last transfer completed (the clock's)
+  std::int64_t first_transfer_us = 0;  // when its first transfer (the header) completed
+  std::int64_t last_transfer_us = 0;   // when its last transfer completed (the clock's)
+  std::int64_t camera_time_us = 0;     // its capture time in the header, the camera's clock
+  // The capture time on the clock's time base (the frame's capture_time_us):
+  // the header's, moved by the least delay to the first transfer
+  // (capture_clock_map.hpp); and that bound's change over the last window.
+  std::int64_t capture_time_us = 0;
+  std::int64_t clock_window_change_us = 0;
 };
 
 class RawFrameListener {
@@ -168,6 +176,15 @@ class RawFrameListener {
   // during the call only. Must not block long: transfers wait meanwhile.
   virtual void on_raw_frame(const RawFrameInfo& info, const tof::RawFrame& frame) = 0;
 };
+
+// The header's stamps are the camera's clock, never the host's, however
+// near they lie (a camera powered up a moment before the host's clock
+// read the same).
+inline CaptureClockMapConfig camera_clock_map_config() {
+  CaptureClockMapConfig c;
+  c.same_clock_window_us = -1;
+  return c;
+}
 
 class UsbCamera {
  public:
@@ -263,6 +280,10 @@ class UsbCamera {
   std::atomic<int> in_flight_{0};
   std::unique_ptr<tof::RawFrame> frame_;
   FrameAssembler assembler_;
+  // The camera's capture stamps on the clock's time base; a frame's first
+  // transfer's completion (the least delay from capture is the bound).
+  CaptureClockMap clock_map_{camera_clock_map_config()};
+  std::int64_t frame_first_transfer_us_ = 0;
   RawFrameListener* listener_ = nullptr;
   std::atomic<bool> resubmit_{false};
   // When the last good frame and the last bytes of any kind arrived: the
