@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Cholesky>
+
 #include "fsw_app/msg_convert.hpp"
 
 namespace fsw_app {
@@ -104,7 +106,23 @@ void HilSensors::score_filter() {
   latest_filter_m_ = (T_est.translation() - T_true.translation()).norm();
   latest_filter_deg_ =
       Eigen::AngleAxisd(T_est.linear().transpose() * T_true.linear()).angle() * kRadToDeg;
-  if (scoring_) score_.filter_approach.add(latest_filter_m_, latest_filter_deg_);
+  if (!scoring_) return;
+  score_.filter_approach.add(latest_filter_m_, latest_filter_deg_);
+  // The filter's claim against its error: position and attitude (world
+  // axes, R_est = exp(dtheta) R_true) each against its 3 x 3 block.
+  Eigen::Matrix<double, 6, 6> P;
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) P(r, c) = estimate_.pose_covariance[r][c];
+  const Eigen::Vector3d e_p = T_est.translation() - T_true.translation();
+  const Eigen::AngleAxisd e_q(T_est.linear() * T_true.linear().transpose());
+  const Eigen::Vector3d e_a = e_q.angle() * e_q.axis();
+  const Eigen::LDLT<Eigen::Matrix3d> Pp(P.topLeftCorner<3, 3>()), Pa(P.bottomRightCorner<3, 3>());
+  if (Pp.info() != Eigen::Success || Pa.info() != Eigen::Success || !Pp.isPositive() ||
+      !Pa.isPositive() || !(P.topLeftCorner<3, 3>().diagonal().minCoeff() > 0.0) ||
+      !(P.bottomRightCorner<3, 3>().diagonal().minCoeff() > 0.0)) {
+    return;
+  }
+  score_.filter_nees_approach.add(e_p.dot(Pp.solve(e_p)), e_a.dot(Pa.solve(e_a)));
 }
 
 void HilSensors::on_tick(std::int64_t now_us, const Eigen::Isometry3d& T_world_body,

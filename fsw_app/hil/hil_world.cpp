@@ -241,6 +241,7 @@ void HilWorld::physics_step(double dt_s, std::int64_t now_us) {
     stats_.locked = true;
     if (stats_.grasp_error_m < 0.0) {
       stats_.grasp_error_m = perp;
+      stats_.grasp_along_m = along - 0.5 * length;
       stats_.locked_at_us = now_us;
     }
     const Eigen::Vector3d a = h.end_point(0);

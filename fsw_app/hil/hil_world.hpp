@@ -39,6 +39,9 @@ Eigen::Isometry3d hil_start_pose(const sim_hal::Scenario& scenario,
 struct HilStats {
   bool locked = false;          // the gripper holds the robot to a bar
   double grasp_error_m = -1.0;  // grasp point to bar centre line when the grip closed
+  // Along the bar from its middle (the point the perch aims at), signed
+  // toward the bar's second end; when the grip closed.
+  double grasp_along_m = 0.0;
   std::int64_t locked_at_us = 0;
   LocalizationScore localization;  // the filter's and the GP's errors
 };

@@ -52,6 +52,10 @@ LocalizationTaskCounters LocalizationTask::counters() const {
   c.imu_seq_gaps = imu_seq_gaps_.load();
   c.imu_queue_overflows = imu_queue_.overflows();
   c.handrail_unusable = handrail_unusable_.load();
+  c.handrail_accepted_be = handrail_accepted_be_.load();
+  c.handrail_accepted_oe = handrail_accepted_oe_.load();
+  c.handrail_accepted_ne = handrail_accepted_ne_.load();
+  c.handrail_oe_as_ne = handrail_oe_as_ne_.load();
   c.poses_published = poses_published_.load();
   c.gp_fallback_accepted = gp_fallback_accepted_.load();
   c.position_sigma_m = position_sigma_m_.load();
@@ -155,7 +159,23 @@ void LocalizationTask::take_handrail(const hrp::handrail_estimate_t& e) {
     handrail_unusable_.fetch_add(1);
     return;
   }
-  (void)filter_->add_handrail(*measurement_);  // counted by the filter, by status
+  if (e.state == hrp::handrail_estimate_t::STATE_OE &&
+      measurement_->state == estimator::HandrailState::kNoEnd) {
+    handrail_oe_as_ne_.fetch_add(1);
+  }
+  // Counted by the filter by status; here by the state it was taken in.
+  if (filter_->add_handrail(*measurement_) != loc::UpdateStatus::kAccepted) return;
+  switch (measurement_->state) {
+    case estimator::HandrailState::kBothEnds:
+      handrail_accepted_be_.fetch_add(1);
+      break;
+    case estimator::HandrailState::kOneEnd:
+      handrail_accepted_oe_.fetch_add(1);
+      break;
+    default:
+      handrail_accepted_ne_.fetch_add(1);
+      break;
+  }
 }
 
 void LocalizationTask::fill_pose() {

@@ -248,6 +248,10 @@ void print_inputs(const RunSummary& s, std::FILE* out) {
   }
 }
 
+std::uint64_t handrail_updates(const LocalizerReport& r) {
+  return r.task.handrail_accepted_be + r.task.handrail_accepted_oe + r.task.handrail_accepted_ne;
+}
+
 // The filter's error against the truth beside the GP localizer's, and what
 // the filter made of its inputs.
 void print_localization(const RunSummary& s, std::FILE* out) {
@@ -259,6 +263,14 @@ void print_localization(const RunSummary& s, std::FILE* out) {
                  "deg; GP mean %.1f mm max %.1f mm, %.2f / %.2f deg\n",
                  1e3 * f.mean_m, 1e3 * f.max_m, f.mean_deg, f.max_deg, 1e3 * g.mean_m,
                  1e3 * g.max_m, g.mean_deg, g.max_deg);
+    const NeesStats& n = l.filter_nees_approach;
+    if (n.samples > 0) {
+      std::fprintf(out,
+                   "  filter NEES         approach: position mean %.1f max %.1f, attitude mean "
+                   "%.1f max %.1f (3 each when consistent; %lld poses)\n",
+                   n.mean_position, n.max_position, n.mean_attitude, n.max_attitude,
+                   static_cast<long long>(n.samples));
+    }
     if (l.at_grasp) {
       std::fprintf(out,
                    "                      at grasp: filter %.1f mm %.2f deg; GP %.1f mm %.2f deg\n",
@@ -271,12 +283,19 @@ void print_localization(const RunSummary& s, std::FILE* out) {
                  "  localizer           IMU %u propagated, %u gaps bridged, %u lost, %u "
                  "rejected; GP %u accepted, %llu held off, %u gated, %u jump, %u relocalized; "
                  "handrail %u + "
-                 "%u NE accepted, %u gated, %u other rejections, %u features gated%s\n",
+                 "%u NE accepted, %u gated, %u other rejections, %u features gated%s\n"
+                 "  handrail updates    %llu BE, %llu OE, %llu NE accepted; %llu OE taken as NE "
+                 "(bar length not yet known)%s\n",
                  r.imu_propagated, r.imu_gaps_bridged, r.imu_gaps_lost, r.imu_rejected,
                  r.gp_accepted, static_cast<unsigned long long>(r.task.gp_held_off),
                  r.gp_rejected_gate, r.gp_rejected_jump, r.gp_relocalized, r.handrail_accepted,
                  r.handrail_no_end_accepted, r.handrail_rejected_gate, r.handrail_rejected_other,
-                 r.features_gated, r.map_valid ? "; handrail map held" : "");
+                 r.features_gated, r.map_valid ? "; handrail map held" : "",
+                 static_cast<unsigned long long>(r.task.handrail_accepted_be),
+                 static_cast<unsigned long long>(r.task.handrail_accepted_oe),
+                 static_cast<unsigned long long>(r.task.handrail_accepted_ne),
+                 static_cast<unsigned long long>(r.task.handrail_oe_as_ne),
+                 s.perched && handrail_updates(r) == 0 ? "; PERCHED WITH NO HANDRAIL UPDATE" : "");
   }
 }
 
@@ -312,8 +331,10 @@ void print_perch_summary(const Options& opt, const RunSummary& s, std::FILE* out
                s.arm.fault_text.empty() ? "" : ": ", s.arm.fault_text.c_str());
   if (s.perched) std::fprintf(out, "  time to perch       %.1f s after PERCH\n", s.time_to_perch_s);
   if (s.grasp_error_m >= 0.0) {
-    std::fprintf(out, "  gripper to bar      %.1f mm when the grip closed\n",
-                 s.grasp_error_m * 1000.0);
+    std::fprintf(out,
+                 "  gripper to bar      %.1f mm when the grip closed, %.1f mm along the bar "
+                 "from its middle\n",
+                 s.grasp_error_m * 1000.0, s.grasp_along_m * 1000.0);
   }
   print_frames(s, out);
   print_sightings(s, out);
@@ -445,6 +466,12 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
     write_errors_json("filter", l.filter_approach, f);
     std::fprintf(f, ", ");
     write_errors_json("gp", l.gp_approach, f);
+    const NeesStats& n = l.filter_nees_approach;
+    std::fprintf(f,
+                 ", \"filter_nees\": {\"samples\": %lld, \"position_mean\": %.3f, "
+                 "\"position_max\": %.3f, \"attitude_mean\": %.3f, \"attitude_max\": %.3f}",
+                 static_cast<long long>(n.samples), n.mean_position, n.max_position,
+                 n.mean_attitude, n.max_attitude);
     std::fprintf(f,
                  "}, \"grasp\": {\"filter_m\": %.5f, \"filter_deg\": %.3f, \"gp_m\": %.5f, "
                  "\"gp_deg\": %.3f}, \"filter_poses\": %lld, \"non_filter_poses\": %lld, ",
@@ -468,7 +495,9 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
                  "\"poses_published\": %llu, \"map_surveyed\": %s, \"handrail_holding\": %s, "
                  "\"gp_fallback_accepted\": %llu, \"position_sigma_m\": %.5f, "
                  "\"position_sigma_held_min_m\": %.5f, \"across_bar_sigma_m\": %.5f, "
-                 "\"across_bar_sigma_held_min_m\": %.5f}",
+                 "\"across_bar_sigma_held_min_m\": %.5f, \"handrail_accepted_be\": %llu, "
+                 "\"handrail_accepted_oe\": %llu, \"handrail_accepted_ne\": %llu, "
+                 "\"handrail_oe_as_ne\": %llu}",
                  r.initialized ? "true" : "false", r.map_valid ? "true" : "false", r.imu_propagated,
                  r.imu_gaps_bridged, r.imu_gaps_lost, r.imu_rejected,
                  static_cast<unsigned long long>(r.task.imu_seq_gaps), r.gp_accepted,
@@ -480,7 +509,11 @@ void write_localization_json(const RunSummary& s, std::FILE* f) {
                  r.map_surveyed ? "true" : "false", r.handrail_holding ? "true" : "false",
                  static_cast<unsigned long long>(r.task.gp_fallback_accepted),
                  r.task.position_sigma_m, r.task.position_sigma_held_min_m,
-                 r.task.across_bar_sigma_m, r.task.across_bar_sigma_held_min_m);
+                 r.task.across_bar_sigma_m, r.task.across_bar_sigma_held_min_m,
+                 static_cast<unsigned long long>(r.task.handrail_accepted_be),
+                 static_cast<unsigned long long>(r.task.handrail_accepted_oe),
+                 static_cast<unsigned long long>(r.task.handrail_accepted_ne),
+                 static_cast<unsigned long long>(r.task.handrail_oe_as_ne));
   } else {
     std::fprintf(f, "\"filter\": null");
   }
@@ -499,7 +532,8 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       "{\"seed\": %llu, \"scenario\": \"%s\", \"tasks\": \"%s\", \"perched\": %s, "
       "\"success\": %s, \"arm_state\": \"%s\", \"fault\": \"%s\", \"fault_text\": \"%s\", "
       "\"arm_tilt_rad\": %.3f, \"arm_pan_rad\": %.3f, \"receiver_faults\": %llu, "
-      "\"time_to_perch_s\": %.2f, \"grasp_error_m\": %.4f, \"frames_received\": %lld, "
+      "\"time_to_perch_s\": %.2f, \"grasp_error_m\": %.4f, \"grasp_along_m\": %.4f, "
+      "\"frames_received\": %lld, "
       "\"frames_processed\": %lld, \"frames_dropped\": %lld, \"frames_corrupt\": %lld, "
       "\"deadline_misses\": %lld, \"processing_median_us\": %d, \"arm_cycles\": %lld, "
       "\"arm_overruns\": %lld, \"arm_longest_gap_ms\": %.1f, \"arm_realtime\": \"%s\", "
@@ -511,11 +545,11 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       json_escaped(s.arm.state_name).c_str(), json_escaped(s.arm.fault_name).c_str(),
       json_escaped(s.arm.fault_text).c_str(), s.arm.tilt_rad, s.arm.pan_rad,
       static_cast<unsigned long long>(s.receiver_faults), s.time_to_perch_s, s.grasp_error_m,
-      static_cast<long long>(h.frames_received), static_cast<long long>(h.frames_processed),
-      static_cast<long long>(h.frames_dropped), static_cast<long long>(h.frames_corrupt),
-      static_cast<long long>(h.deadline_misses), h.processing_median_us,
-      static_cast<long long>(arm.cycles), static_cast<long long>(arm.overruns),
-      1e-3 * static_cast<double>(arm.longest_gap_us),
+      s.grasp_along_m, static_cast<long long>(h.frames_received),
+      static_cast<long long>(h.frames_processed), static_cast<long long>(h.frames_dropped),
+      static_cast<long long>(h.frames_corrupt), static_cast<long long>(h.deadline_misses),
+      h.processing_median_us, static_cast<long long>(arm.cycles),
+      static_cast<long long>(arm.overruns), 1e-3 * static_cast<double>(arm.longest_gap_us),
       s.arm_loop ? hal::to_string(arm.realtime) : "", s.camera_longest_gap_ms,
       s.estimator_longest_latency_ms, s.estimator_frames_without_pose,
       s.replay ? static_cast<long long>(s.replay->frames) : -1LL,

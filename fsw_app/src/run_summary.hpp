@@ -46,6 +46,7 @@ struct RunSummary {
   bool success = false;              // perched within 1 cm of the bar
   double time_to_perch_s = -1.0;     // from PERCH to PERCHED
   double grasp_error_m = -1.0;       // known only with the simulated world here
+  double grasp_along_m = 0.0;        // along the bar from its middle (with grasp_error_m)
   hrp::arm_state_t arm{};            // the last ARM_STATE heard
   hrp::estimator_health_t health{};  // the last ESTIMATOR_HEALTH heard
   // Local tasks' own figures.

@@ -81,6 +81,7 @@ int stop_and_report(const Options& opt, LcmHub& hub, const hal::Clock& clock, Ru
 #ifdef HRP_WITH_SIM
   if (world) {
     summary.grasp_error_m = world->stats().grasp_error_m;
+    summary.grasp_along_m = world->stats().grasp_along_m;
     summary.localization = world->stats().localization;
     world->stop();
   }

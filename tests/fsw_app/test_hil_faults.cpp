@@ -52,6 +52,24 @@ void test_clean_perch(void**) {
   assert_true(nested(o, {"localization", "approach", "filter", "samples"}) > 100);
   assert_true(filter_mean >= 0.0 && filter_mean < 0.1);
   assert_true(nested(o, {"localization", "filter", "handrail_accepted"}) > 5);
+  // The updates by state add up to the filter's own counts (BE and OE are
+  // one kind there), and the filter's claim was scored against its error.
+  const double be_updates = nested(o, {"localization", "filter", "handrail_accepted_be"});
+  const double oe_updates = nested(o, {"localization", "filter", "handrail_accepted_oe"});
+  assert_true(be_updates > 0.0);
+  assert_true(be_updates + oe_updates ==
+              nested(o, {"localization", "filter", "handrail_accepted"}));
+  assert_true(nested(o, {"localization", "filter", "handrail_accepted_ne"}) ==
+              nested(o, {"localization", "filter", "handrail_no_end_accepted"}));
+  const double nees_samples = nested(o, {"localization", "approach", "filter_nees", "samples"});
+  const double nees_position =
+      nested(o, {"localization", "approach", "filter_nees", "position_mean"});
+  std::printf(
+      "  filter NEES over the approach: position %.1f, attitude %.1f (%g poses)\n", nees_position,
+      nested(o, {"localization", "approach", "filter_nees", "attitude_mean"}), nees_samples);
+  assert_true(nees_samples > 100 && nees_position > 0.0);
+  // Along the bar, within the 0.55 m bar's half.
+  assert_true(std::fabs(o.number("grasp_along_m")) < 0.275);
   // Every frame with both ends seen measured the 0.55 m bar: one type.
   const double be = nested(o, {"sightings", "be"});
   assert_true(be > 5);

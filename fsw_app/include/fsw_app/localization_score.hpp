@@ -22,8 +22,27 @@ struct PoseErrorStats {
   }
 };
 
+// The normalized estimation error squared of a pose source that claims a
+// covariance: e^T P^-1 e for its position (3 degrees of freedom, world) and
+// its attitude (3, world axes), per pose, averaged over a phase. A
+// consistent filter averages 3 on each; far above 3 it is overconfident.
+struct NeesStats {
+  std::int64_t samples = 0;
+  double mean_position = 0.0, mean_attitude = 0.0;
+  double max_position = 0.0, max_attitude = 0.0;
+  void add(double position, double attitude) {
+    ++samples;
+    const double n = static_cast<double>(samples);
+    mean_position += (position - mean_position) / n;
+    mean_attitude += (attitude - mean_attitude) / n;
+    max_position = position > max_position ? position : max_position;
+    max_attitude = attitude > max_attitude ? attitude : max_attitude;
+  }
+};
+
 struct LocalizationScore {
   PoseErrorStats filter_approach, gp_approach;
+  NeesStats filter_nees_approach;                         // the filter's poses over the approach
   bool at_grasp = false;                                  // the grip closed while scoring
   double filter_grasp_m = -1.0, filter_grasp_deg = -1.0;  // the filter's newest at the grasp
   double gp_grasp_m = -1.0, gp_grasp_deg = -1.0;          // the newest GP fix at the grasp

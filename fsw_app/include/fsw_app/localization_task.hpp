@@ -50,6 +50,11 @@ struct LocalizationTaskCounters {
   std::uint64_t imu_seq_gaps = 0;  // samples missing by the IMU's counter
   std::uint64_t imu_queue_overflows = 0;
   std::uint64_t handrail_unusable = 0;  // NH, deadline, nothing in view
+  // Handrail updates the filter accepted, by the state it took them in
+  // (BE, OE, NE), and OE estimates taken as NE for want of a known bar
+  // length (bar_length_tally.hpp).
+  std::uint64_t handrail_accepted_be = 0, handrail_accepted_oe = 0, handrail_accepted_ne = 0;
+  std::uint64_t handrail_oe_as_ne = 0;
   std::uint64_t poses_published = 0;
   // GP poses the filter accepted after the handrail had held the pose and
   // stopped holding it: the fall-back on the GP when the handrail is lost.
@@ -125,7 +130,9 @@ class LocalizationTask {
   Eigen::Vector3d last_omega_body_ = Eigen::Vector3d::Zero();
   std::int64_t last_health_us_ = 0;
   std::atomic<std::uint64_t> imu_in_{0}, gp_in_{0}, gp_held_off_{0}, handrail_in_{0},
-      imu_seq_gaps_{0}, handrail_unusable_{0}, poses_published_{0}, gp_fallback_accepted_{0};
+      imu_seq_gaps_{0}, handrail_unusable_{0}, poses_published_{0}, gp_fallback_accepted_{0},
+      handrail_accepted_be_{0}, handrail_accepted_oe_{0}, handrail_accepted_ne_{0},
+      handrail_oe_as_ne_{0};
   std::atomic<double> position_sigma_m_{-1.0}, position_sigma_held_min_m_{-1.0},
       across_bar_sigma_m_{-1.0}, across_bar_sigma_held_min_m_{-1.0};
   bool handrail_has_held_ = false;
