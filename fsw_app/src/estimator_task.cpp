@@ -43,8 +43,13 @@ void EstimatorTask::stop() {
 }
 
 EstimatorCounters EstimatorTask::counters() const {
-  return {processed_.load(), misses_.load(), found_.load(), longest_latency_us_.load(),
-          without_pose_.load()};
+  EstimatorCounters c{processed_.load(),          misses_.load(),       found_.load(),
+                      longest_latency_us_.load(), without_pose_.load(), {}};
+  for (int k = 0; k < kPoseAtStatusCount; ++k) {
+    c.without_pose_by_status[static_cast<std::size_t>(k)] =
+        without_pose_by_status_[static_cast<std::size_t>(k)].load();
+  }
+  return c;
 }
 
 void EstimatorTask::note_time(std::int32_t us) {
@@ -108,7 +113,10 @@ void EstimatorTask::fill_estimate(const estimator::HandrailDetection& d) {
   const PoseAtStatus at_capture = poses_.pose_at(d.capture_time_us, &T_world_body);
   const bool have_pose =
       at_capture == PoseAtStatus::kInterpolated || at_capture == PoseAtStatus::kNewest;
-  if (!have_pose) without_pose_.fetch_add(1);
+  if (!have_pose) {
+    without_pose_.fetch_add(1);
+    without_pose_by_status_[static_cast<std::size_t>(at_capture)].fetch_add(1);
+  }
   if (have_pose) {
     // The tracker runs on every frame, found or not (a miss ages the track).
     tracker_.update(d, T_world_body.cast<float>(), cfg_.T_body_cam.cast<float>());

@@ -186,6 +186,9 @@ void print_frames(const RunSummary& s, std::FILE* out) {
     }
     if (s.estimator_frames_without_pose >= 0) {
       std::fprintf(out, ", %lld without a pose at capture", s.estimator_frames_without_pose);
+      if (!s.without_pose_reasons.empty()) {
+        std::fprintf(out, " (%s)", s.without_pose_reasons.c_str());
+      }
     }
     std::fprintf(out, "\n");
   }
@@ -538,7 +541,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       "\"deadline_misses\": %lld, \"processing_median_us\": %d, \"arm_cycles\": %lld, "
       "\"arm_overruns\": %lld, \"arm_longest_gap_ms\": %.1f, \"arm_realtime\": \"%s\", "
       "\"camera_longest_gap_ms\": %.1f, \"estimator_longest_latency_ms\": %.1f, "
-      "\"estimator_frames_without_pose\": %lld, "
+      "\"estimator_frames_without_pose\": %lld, \"estimator_without_pose_by_reason\": %s, "
       "\"replayed_frames\": %lld, \"replayed_bad_frames\": %lld, \"replay_damaged\": %lld, ",
       static_cast<unsigned long long>(opt.seed), json_escaped(opt.scenario).c_str(),
       task_names(opt.tasks).c_str(), s.perched ? "true" : "false", s.success ? "true" : "false",
@@ -552,6 +555,7 @@ bool write_summary_json(const Options& opt, const RunSummary& s, const std::stri
       static_cast<long long>(arm.overruns), 1e-3 * static_cast<double>(arm.longest_gap_us),
       s.arm_loop ? hal::to_string(arm.realtime) : "", s.camera_longest_gap_ms,
       s.estimator_longest_latency_ms, s.estimator_frames_without_pose,
+      s.without_pose_reasons_json.c_str(),
       s.replay ? static_cast<long long>(s.replay->frames) : -1LL,
       s.replay ? static_cast<long long>(s.replay->bad_frames) : -1LL,
       s.replay ? static_cast<long long>(s.replay->damaged) : -1LL);

@@ -67,6 +67,8 @@ struct RunSummary {
   // Frames the estimator could not place in the world: no robot pose at
   // their capture time (-1: no estimator task here).
   long long estimator_frames_without_pose = -1;
+  // Why, by PoseAtStatus name: "TOO_OLD 4, GAP 1" and its JSON object.
+  std::string without_pose_reasons, without_pose_reasons_json = "{}";
   std::optional<LogPlayerCounts> replay;
   std::int64_t log_messages = -1;
   std::int64_t log_depth_frames = -1;  // DEPTH_FRAME messages in the log

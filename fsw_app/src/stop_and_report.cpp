@@ -32,8 +32,19 @@ int stop_and_report(const Options& opt, LcmHub& hub, const hal::Clock& clock, Ru
   if (tasks.estimator_task) {
     summary.estimator_longest_latency_ms =
         1e-3 * static_cast<double>(tasks.estimator_task->counters().longest_latency_us);
-    summary.estimator_frames_without_pose =
-        static_cast<long long>(tasks.estimator_task->counters().without_pose);
+    const EstimatorCounters c = tasks.estimator_task->counters();
+    summary.estimator_frames_without_pose = static_cast<long long>(c.without_pose);
+    summary.without_pose_reasons_json = "{";
+    for (int k = 0; k < kPoseAtStatusCount; ++k) {
+      const std::uint64_t n = c.without_pose_by_status[static_cast<std::size_t>(k)];
+      if (n == 0) continue;
+      const std::string name = to_string(static_cast<PoseAtStatus>(k));
+      const std::string count = std::to_string(n);
+      const bool first = summary.without_pose_reasons.empty();
+      summary.without_pose_reasons += (first ? "" : ", ") + name + " " + count;
+      summary.without_pose_reasons_json += (first ? "\"" : ", \"") + name + "\": " + count;
+    }
+    summary.without_pose_reasons_json += "}";
   }
   if (tasks.player) tasks.player->stop();
   if (tasks.manager) {

@@ -70,6 +70,17 @@ void test_clean_perch(void**) {
   assert_true(nees_samples > 100 && nees_position > 0.0);
   // Along the bar, within the 0.55 m bar's half.
   assert_true(std::fabs(o.number("grasp_along_m")) < 0.275);
+  // The frames placed with no pose at their capture, by reason, add up.
+  const formats::JsonValue* why = o.json.find("estimator_without_pose_by_reason");
+  assert_non_null(why);
+  assert_true(why->is_object());
+  double without_pose = 0.0;
+  for (const auto& member : why->members) {
+    std::printf("  frames without a pose at capture: %s %g\n", member.first.c_str(),
+                member.second.number);
+    without_pose += member.second.number;
+  }
+  assert_true(without_pose == o.number("estimator_frames_without_pose"));
   // Every frame with both ends seen measured the 0.55 m bar: one type.
   const double be = nested(o, {"sightings", "be"});
   assert_true(be > 5);

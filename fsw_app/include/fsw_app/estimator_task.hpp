@@ -44,6 +44,7 @@ struct EstimatorCounters {
   // Frames with no pose at their capture time (none yet, too old, across a
   // gap in the filter's poses, lost): not placed in the world.
   std::uint64_t without_pose = 0;
+  std::array<std::uint64_t, kPoseAtStatusCount> without_pose_by_status{};  // by PoseAtStatus
 };
 
 class EstimatorTask {
@@ -95,6 +96,7 @@ class EstimatorTask {
   std::array<std::int32_t, kWindow> times_{};
   int n_times_ = 0, next_time_ = 0;
   std::atomic<std::uint64_t> processed_{0}, misses_{0}, found_{0}, without_pose_{0};
+  std::array<std::atomic<std::uint64_t>, kPoseAtStatusCount> without_pose_by_status_{};
   std::atomic<std::int64_t> longest_latency_us_{0};
   std::int64_t last_health_us_ = 0;
   std::atomic<bool> running_{false};

@@ -33,6 +33,7 @@ enum class PoseAtStatus : std::uint8_t {
   kGap,           // the poses around it are further apart than kMaxBracket_us
   kLost,          // a pose around it is marked lost
 };
+constexpr int kPoseAtStatusCount = 7;
 const char* to_string(PoseAtStatus status);
 
 class PoseHistory {
