@@ -196,6 +196,16 @@ void test_assembler_drops(void**) {
       AssemblyEvent::kNone);
   assert_int_equal(a.counts().frames_bad_header, 1);
   assert_int_equal(a.counts().transfers_discarded, 1);
+  // Exposures outside the use case's range (MODE_5_45FPS_500: 1 to 500 us).
+  for (const std::uint32_t exposure_us : {0u, 501u, 0xFFFFFFFFu}) {
+    WireFrame overexposed = make_frame(16);
+    put_u32(&overexposed.bytes[24], exposure_us);
+    put_u32(&overexposed.bytes[60], crc32(overexposed.bytes.data(), 60));
+    assert_int_equal(feed(&a, overexposed, 65536), AssemblyEvent::kDropped);
+    assert_int_equal(a.counts().last_header_error, ParseStatus::kBadExposure);
+  }
+  assert_int_equal(a.counts().frames_bad_header, 4);
+  assert_string_equal(pico_flexx::to_string(ParseStatus::kBadExposure), "BAD_EXPOSURE");
   // After all that, good frames still arrive.
   assert_int_equal(feed(&a, make_frame(16), 65536), AssemblyEvent::kFrameReady);
 }

@@ -126,6 +126,8 @@ const char* to_string(ParseStatus status) {
       return "BAD_VERSION";
     case ParseStatus::kBadSize:
       return "BAD_SIZE";
+    case ParseStatus::kBadExposure:
+      return "BAD_EXPOSURE";
   }
   return "UNKNOWN_PARSE_STATUS";
 }
@@ -242,6 +244,9 @@ ParseStatus parse_frame_header(const std::uint8_t* data, std::size_t length, Fra
       h.height_px != tof::kHeightPx ||
       h.payload_bytes != static_cast<std::uint32_t>(h.raw_images) * tof::kPixels * 2u) {
     return ParseStatus::kBadSize;
+  }
+  if (h.exposure_us == 0 || h.exposure_us > use_cases[h.use_case_index].max_exposure_us) {
+    return ParseStatus::kBadExposure;
   }
   *out = h;
   return ParseStatus::kOk;

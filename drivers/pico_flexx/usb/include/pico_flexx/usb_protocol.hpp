@@ -70,6 +70,9 @@ enum class ParseStatus : std::uint8_t {
   kWrongTag,      // a reply to an earlier command (a late reply)
   kBadVersion,
   kBadSize,  // a frame header whose sizes do not fit its use case
+  // A frame header whose exposure is 0 or longer than its use case allows:
+  // a frame exposed so is not what the camera was set to take.
+  kBadExposure,
 };
 const char* to_string(ParseStatus status);
 
