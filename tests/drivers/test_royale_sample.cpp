@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "royale.hpp"
 
@@ -155,6 +156,13 @@ void test_api_contract(void**) {
   assert_null(manager.createCamera(g_rig->config.serial).get());  // not listed yet
   const royale::Vector<royale::String> ids = manager.getConnectedCameraList();
   assert_int_equal(ids.size(), 1);
+  // royale's container calls beside the standard ones.
+  assert_int_equal(ids.count(), 1);
+  const std::vector<royale::String> as_std = ids.toStdVector();
+  assert_string_equal(as_std[0].toStdString().c_str(), g_rig->config.serial.c_str());
+  assert_true(royale::String::fromStdString(g_rig->config.serial) == ids[0]);
+  assert_true(royale::String::fromCArray(nullptr).empty());
+  assert_int_equal(royale::Vector<int>::fromStdVector({1, 2, 3}).count(), 3);
   assert_null(manager.createCamera("0000-0000-0000").get());
   std::unique_ptr<royale::ICameraDevice> device = manager.createCamera(ids[0]);
   assert_non_null(device.get());
@@ -174,6 +182,8 @@ void test_api_contract(void**) {
   royale::Pair<uint32_t, uint32_t> limits;
   assert_int_equal(device->getExposureLimits(limits), CameraStatus::SUCCESS);
   assert_int_equal(limits.second, 1000);
+  assert_int_equal(limits.toStdPair().second, 1000);
+  assert_true((royale::Pair<uint32_t, uint32_t>::fromStdPair({1u, 1000u}) == limits));
   assert_int_equal(device->setExposureTime(limits.second + 1),
                    CameraStatus::EXPOSURE_TIME_NOT_SUPPORTED);
   assert_int_equal(device->setExposureTime(800), CameraStatus::SUCCESS);
