@@ -229,11 +229,96 @@ void test_api_contract(void**) {
   // with the driver's transfer count.
 }
 
+// Keeps the events a device reports, in order.
+class EventLog final : public royale::IEventListener {
+ public:
+  struct Entry {
+    royale::EventSeverity severity;
+    royale::EventType type;
+    std::string text;
+  };
+  void onEvent(std::unique_ptr<royale::IEvent>&& event) override {
+    std::lock_guard<std::mutex> lock(mutex);
+    entries.push_back({event->severity(), event->type(), event->describe()});
+  }
+  // How many of `type` (and `severity`, unless any) arrived.
+  int count(royale::EventType type, int severity = -1) {
+    std::lock_guard<std::mutex> lock(mutex);
+    int n = 0;
+    for (const Entry& e : entries) {
+      n += e.type == type && (severity < 0 || static_cast<int>(e.severity) == severity);
+    }
+    return n;
+  }
+  bool wait_for(royale::EventType type, int severity, int n, int timeout_ms) {
+    for (int waited = 0; waited < timeout_ms; waited += 50) {
+      if (count(type, severity) >= n) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return count(type, severity) >= n;
+  }
+  std::mutex mutex;
+  std::vector<Entry> entries;
+};
+
+// Events with the driver's own facts: about once a second of capture the
+// stream's frames (INFO when none were dropped, WARNING after corrupt
+// frames and while none arrive), and a camera pulled out is reported lost
+// (FATAL), once.
+void test_events_from_the_driver(void**) {
+  using royale::EventSeverity;
+  using royale::EventType;
+  royale::CameraManager manager;
+  const royale::Vector<royale::String> ids = manager.getConnectedCameraList();
+  assert_int_equal(ids.count(), 1);
+  std::unique_ptr<royale::ICameraDevice> device = manager.createCamera(ids[0]);
+  assert_non_null(device.get());
+  assert_int_equal(device->initialize(), royale::CameraStatus::SUCCESS);
+  RecordingListener frames;
+  EventLog events;
+  assert_int_equal(device->registerEventListener(nullptr), royale::CameraStatus::INVALID_VALUE);
+  assert_int_equal(device->registerEventListener(&events), royale::CameraStatus::SUCCESS);
+  assert_int_equal(device->registerDataListener(&frames), royale::CameraStatus::SUCCESS);
+  assert_int_equal(device->startCapture(), royale::CameraStatus::SUCCESS);
+  const int info = static_cast<int>(EventSeverity::ROYALE_INFO);
+  const int warning = static_cast<int>(EventSeverity::ROYALE_WARNING);
+  const int fatal = static_cast<int>(EventSeverity::ROYALE_FATAL);
+  assert_true(events.wait_for(EventType::ROYALE_RAW_FRAME_STATS, info, 2, 5000));
+  g_rig->camera->corrupt_next_frames(3);
+  assert_true(events.wait_for(EventType::ROYALE_RAW_FRAME_STATS, warning, 1, 5000));
+  // The cable pulled: the driver looks for the camera for 10 s, then
+  // declares it lost.
+  g_rig->camera->unplug();
+  assert_true(events.wait_for(EventType::ROYALE_DEVICE_DISCONNECTED, fatal, 1, 15000));
+  std::string error;
+  assert_true(g_rig->camera->replug(&error));
+  assert_int_equal(device->stopCapture(), royale::CameraStatus::SUCCESS);
+  assert_int_equal(device->unregisterEventListener(), royale::CameraStatus::SUCCESS);
+  const int after_unregister = events.count(EventType::ROYALE_RAW_FRAME_STATS);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  assert_int_equal(events.count(EventType::ROYALE_RAW_FRAME_STATS), after_unregister);
+  std::lock_guard<std::mutex> lock(events.mutex);
+  int lost = 0;
+  for (const EventLog::Entry& e : events.entries) {
+    std::printf("  event %d/%d: %s\n", static_cast<int>(e.severity), static_cast<int>(e.type),
+                e.text.c_str());
+    lost += e.type == EventType::ROYALE_DEVICE_DISCONNECTED;
+  }
+  assert_int_equal(lost, 1);  // reported once
+  // The three corrupt frames, each counted once.
+  bool three_dropped = false;
+  for (const EventLog::Entry& e : events.entries) {
+    three_dropped = three_dropped || e.text.find(" and 3 dropped") != std::string::npos;
+  }
+  assert_true(three_dropped);
+}
+
 }  // namespace
 
 int main(int, char** argv) {
   sim_hal::umockdev_preload::ensure(argv);
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_sample_against_the_emulated_camera),
-                                     cmocka_unit_test(test_api_contract)};
+                                     cmocka_unit_test(test_api_contract),
+                                     cmocka_unit_test(test_events_from_the_driver)};
   return cmocka_run_group_tests(tests, set_up, tear_down);
 }

@@ -7,5 +7,7 @@
 #include "royale/ExposureMode.hpp"
 #include "royale/ICameraDevice.hpp"
 #include "royale/IDepthDataListener.hpp"
+#include "royale/IEvent.hpp"
+#include "royale/IEventListener.hpp"
 #include "royale/LensParameters.hpp"
 #include "royale/Status.hpp"

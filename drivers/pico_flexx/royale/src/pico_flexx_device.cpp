@@ -3,6 +3,9 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <thread>
 
 #include "hal/clock.hpp"
 #include "hal/use_case.hpp"
@@ -39,8 +42,10 @@ PicoFlexxDevice::PicoFlexxDevice(const pico_flexx::UsbCameraConfig& usb, const r
     : id_(id), camera_(usb, pico_flexx::PipelineConfig{}, clock_) {}
 
 PicoFlexxDevice::~PicoFlexxDevice() {
-  // Before the members go: no frame may be delivered into a half-destroyed
-  // device.
+  // Before the members go: no event and no frame may be delivered into a
+  // half-destroyed device.
+  watching_ = false;
+  if (watcher_.joinable()) watcher_.join();
   if (camera_.is_capturing()) (void)camera_.stop_capture();
 }
 
@@ -160,6 +165,100 @@ royale::CameraStatus PicoFlexxDevice::unregisterDataListener() {
   std::lock_guard<std::mutex> lock(listener_mutex_);
   listener_ = nullptr;
   return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::registerEventListener(royale::IEventListener* listener) {
+  if (listener == nullptr) return royale::CameraStatus::INVALID_VALUE;
+  {
+    std::lock_guard<std::mutex> lock(event_mutex_);
+    event_listener_ = listener;
+  }
+  if (!watching_.exchange(true)) watcher_ = std::thread([this] { watch_for_events(); });
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::unregisterEventListener() {
+  std::lock_guard<std::mutex> lock(event_mutex_);
+  event_listener_ = nullptr;
+  return royale::CameraStatus::SUCCESS;
+}
+
+namespace {
+
+// One of the device's events: its severity, type and words.
+class DeviceEvent final : public royale::IEvent {
+ public:
+  DeviceEvent(royale::EventSeverity severity, royale::EventType type, const char* text)
+      : severity_(severity), type_(type), text_(text) {}
+  royale::EventSeverity severity() const override { return severity_; }
+  const royale::String describe() const override { return text_; }
+  royale::EventType type() const override { return type_; }
+
+ private:
+  royale::EventSeverity severity_;
+  royale::EventType type_;
+  royale::String text_;
+};
+
+}  // namespace
+
+void PicoFlexxDevice::emit(royale::EventSeverity severity, royale::EventType type,
+                           const char* text) {
+  std::lock_guard<std::mutex> lock(event_mutex_);
+  if (event_listener_ == nullptr) return;
+  event_listener_->onEvent(std::make_unique<DeviceEvent>(severity, type, text));
+}
+
+void PicoFlexxDevice::watch_for_events() {
+  while (watching_.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const pico_flexx::CameraState state = camera_.usb().state();
+    if (state == pico_flexx::CameraState::kLost && !reported_lost_) {
+      reported_lost_ = true;
+      char text[128];
+      std::snprintf(text, sizeof text, "the camera is lost (%s)",
+                    pico_flexx::to_string(camera_.usb().lost_reason()));
+      emit(royale::EventSeverity::ROYALE_FATAL, royale::EventType::ROYALE_DEVICE_DISCONNECTED,
+           text);
+    } else if (state != pico_flexx::CameraState::kLost) {
+      reported_lost_ = false;  // re-acquired: a later loss is news again
+    }
+    report_stream_stats(clock_.now_us());
+  }
+}
+
+void PicoFlexxDevice::report_stream_stats(std::int64_t now_us) {
+  if (!camera_.is_capturing()) {
+    last_stats_us_ = 0;
+    return;
+  }
+  const pico_flexx::UsbCounters c = camera_.usb().counters();
+  // Every frame not handed on leaves a gap in the sequence numbers (the
+  // ones the driver refused as well as the ones lost at the camera).
+  const std::uint64_t dropped = c.assembly.frames_missed;
+  if (last_stats_us_ == 0) {
+    last_stats_us_ = now_us;
+    last_delivered_ = c.frames_delivered;
+    last_dropped_ = dropped;
+    return;
+  }
+  if (now_us - last_stats_us_ < 1000000) return;
+  const std::uint64_t delivered_now = c.frames_delivered - last_delivered_;
+  const std::uint64_t dropped_now = dropped - last_dropped_;
+  // No frame at all while capturing is a dropped second too, though no
+  // sequence gap can count it yet (the camera silent, pulled out).
+  char text[160];
+  std::snprintf(
+      text, sizeof text, "%llu frames received and %llu dropped in the last %.1f s (camera %s)",
+      static_cast<unsigned long long>(delivered_now), static_cast<unsigned long long>(dropped_now),
+      1e-6 * static_cast<double>(now_us - last_stats_us_),
+      pico_flexx::to_string(camera_.usb().state()));
+  const bool missing = dropped_now > 0 || delivered_now == 0;
+  emit(missing ? royale::EventSeverity::ROYALE_WARNING : royale::EventSeverity::ROYALE_INFO,
+       royale::EventType::ROYALE_RAW_FRAME_STATS, text);
+  last_stats_us_ = now_us;
+  last_delivered_ = c.frames_delivered;
+  last_dropped_ = dropped;
 }
 
 royale::CameraStatus PicoFlexxDevice::startCapture() {

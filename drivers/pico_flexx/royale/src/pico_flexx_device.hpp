@@ -4,7 +4,10 @@
 // (pico_flexx::UsbDepthCamera), its depth frames copied into one
 // royale::DepthData sized at initialize(), so that nothing is allocated
 // per frame.
+#include <atomic>
+#include <cstdint>
 #include <mutex>
+#include <thread>
 
 #include "hal/clock.hpp"
 #include "hal/depth_camera.hpp"
@@ -36,6 +39,8 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
                                          royale::StreamId streamId) const override;
   royale::CameraStatus registerDataListener(royale::IDepthDataListener* listener) override;
   royale::CameraStatus unregisterDataListener() override;
+  royale::CameraStatus registerEventListener(royale::IEventListener* listener) override;
+  royale::CameraStatus unregisterEventListener() override;
   royale::CameraStatus startCapture() override;
   royale::CameraStatus stopCapture() override;
   royale::CameraStatus getMaxSensorWidth(uint16_t& maxSensorWidth) const override;
@@ -48,6 +53,12 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
  private:
   // The driver's frame, on its event thread.
   void on_new_data(const hal::DepthFrame& frame) override;
+  // The event thread's loop: every 100 ms, the camera's state (a lost
+  // camera is reported once), and each second of capture the USB stream's
+  // frames delivered and dropped since the last report.
+  void watch_for_events();
+  void report_stream_stats(std::int64_t now_us);
+  void emit(royale::EventSeverity severity, royale::EventType type, const char* text);
 
   // Declared before camera_ so that they outlive its event thread.
   hal::MonotonicClock clock_;
@@ -58,6 +69,15 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
   royale::IDepthDataListener* listener_ = nullptr;
   royale::DepthData data_{};
   pico_flexx::UsbDepthCamera camera_;
+  // Events: the listener, and the thread that finds what to report
+  // (started by the first registration, joined by the destructor).
+  std::mutex event_mutex_;
+  royale::IEventListener* event_listener_ = nullptr;
+  std::atomic<bool> watching_{false};
+  std::thread watcher_;
+  bool reported_lost_ = false;
+  std::int64_t last_stats_us_ = 0;
+  std::uint64_t last_delivered_ = 0, last_dropped_ = 0;
 };
 
 }  // namespace royale

@@ -7,6 +7,7 @@
 #include "royale/Definitions.hpp"
 #include "royale/ExposureMode.hpp"
 #include "royale/IDepthDataListener.hpp"
+#include "royale/IEventListener.hpp"
 #include "royale/LensParameters.hpp"
 #include "royale/Status.hpp"
 
@@ -39,6 +40,11 @@ class ICameraDevice {
 
   virtual royale::CameraStatus registerDataListener(royale::IDepthDataListener* listener) = 0;
   virtual royale::CameraStatus unregisterDataListener() = 0;
+  // Events (IEvent.hpp) from a thread of the device's: the stream's frame
+  // counts about once a second while capturing (RAW_FRAME_STATS, a WARNING
+  // when frames were dropped) and a lost camera (DEVICE_DISCONNECTED).
+  virtual royale::CameraStatus registerEventListener(royale::IEventListener* listener) = 0;
+  virtual royale::CameraStatus unregisterEventListener() = 0;
 
   virtual royale::CameraStatus startCapture() = 0;
   virtual royale::CameraStatus stopCapture() = 0;
