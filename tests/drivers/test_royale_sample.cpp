@@ -176,6 +176,28 @@ void test_api_contract(void**) {
   assert_true(calibrated);
   assert_int_equal(device->setUseCase("MODE_7_NONE"), CameraStatus::USECASE_NOT_SUPPORTED);
   assert_int_equal(device->setUseCase("MODE_9_10FPS_1000"), CameraStatus::SUCCESS);
+  royale::Vector<royale::Pair<royale::String, royale::String>> info;
+  assert_int_equal(device->getCameraInfo(info), CameraStatus::SUCCESS);
+  assert_int_equal(info.count(), 3);
+  assert_string_equal(info[0].first.c_str(), "SERIAL_NUMBER");
+  assert_string_equal(info[0].second.c_str(), g_rig->config.serial.c_str());
+  assert_string_equal(info[1].second.c_str(), "1.4");  // the emulator's firmware
+  royale::Vector<royale::StreamId> streams;
+  assert_int_equal(device->getStreams(streams), CameraStatus::SUCCESS);
+  assert_int_equal(streams.count(), 1);
+  assert_int_equal(streams[0], 0xdefa);
+  uint32_t stream_count = 0;
+  assert_int_equal(device->getNumberOfStreams("MODE_9_5FPS_2000", stream_count),
+                   CameraStatus::SUCCESS);
+  assert_int_equal(stream_count, 1);
+  assert_int_equal(device->getNumberOfStreams("MODE_7_NONE", stream_count),
+                   CameraStatus::USECASE_NOT_SUPPORTED);
+  unsigned major = 0, minor = 0, patch = 0, build = 1;
+  royale::String revision = "x";
+  royale::getVersion(major, minor, patch, build, revision);
+  assert_true(major == 3 && minor == 21 && patch == 0 && build == 0 && revision.empty());
+  assert_string_equal(royale::getErrorString(CameraStatus::DEVICE_NOT_INITIALIZED).c_str(),
+                      "initialize() must succeed before this call.");
   royale::String use_case;
   assert_int_equal(device->getCurrentUseCase(use_case), CameraStatus::SUCCESS);
   assert_string_equal(use_case.c_str(), "MODE_9_10FPS_1000");

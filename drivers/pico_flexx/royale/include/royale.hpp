@@ -11,3 +11,17 @@
 #include "royale/IEventListener.hpp"
 #include "royale/LensParameters.hpp"
 #include "royale/Status.hpp"
+
+namespace royale {
+
+// The royale release whose level-1 calls this library follows (in part:
+// drivers/pico_flexx/doc/royale.md): 3.21.0, build 0, no SCM revision.
+void getVersion(unsigned& major, unsigned& minor, unsigned& patch);
+void getVersion(unsigned& major, unsigned& minor, unsigned& patch, unsigned& build);
+void getVersion(unsigned& major, unsigned& minor, unsigned& patch, unsigned& build,
+                royale::String& scmRevision);
+
+// A sentence, in English, for developers, on what a status means.
+royale::String getErrorString(royale::CameraStatus status);
+
+}  // namespace royale

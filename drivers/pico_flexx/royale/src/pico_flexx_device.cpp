@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <string>
 #include <thread>
 
 #include "hal/clock.hpp"
@@ -94,6 +95,37 @@ royale::CameraStatus PicoFlexxDevice::getUseCases(royale::Vector<royale::String>
   useCases.clear();
   for (std::size_t i = 0; i < count; ++i) useCases.push_back(all[i].name);
   return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getCameraInfo(
+    royale::Vector<royale::Pair<royale::String, royale::String>>& camInfo) const {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  const pico_flexx::Identity& who = camera_.usb().identity();
+  camInfo.clear();
+  camInfo.push_back({"SERIAL_NUMBER", who.serial});
+  camInfo.push_back({"FIRMWARE_VERSION", std::to_string(who.firmware_major) + "." +
+                                             std::to_string(who.firmware_minor)});
+  camInfo.push_back({"USB_PROTOCOL_VERSION", std::to_string(who.protocol_version)});
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getStreams(royale::Vector<royale::StreamId>& streams) const {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  streams.assign(1, kStream);
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getNumberOfStreams(const royale::String& name,
+                                                         uint32_t& nrStreams) const {
+  std::size_t count = 0;
+  const hal::UseCase* all = hal::use_cases(&count);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (name == all[i].name) {
+      nrStreams = 1;
+      return royale::CameraStatus::SUCCESS;
+    }
+  }
+  return royale::CameraStatus::USECASE_NOT_SUPPORTED;
 }
 
 royale::CameraStatus PicoFlexxDevice::getCurrentUseCase(royale::String& useCase) const {

@@ -29,6 +29,11 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
   royale::CameraStatus setUseCase(const royale::String& name) override;
   royale::CameraStatus getUseCases(royale::Vector<royale::String>& useCases) const override;
   royale::CameraStatus getCurrentUseCase(royale::String& useCase) const override;
+  royale::CameraStatus getCameraInfo(
+      royale::Vector<royale::Pair<royale::String, royale::String>>& camInfo) const override;
+  royale::CameraStatus getStreams(royale::Vector<royale::StreamId>& streams) const override;
+  royale::CameraStatus getNumberOfStreams(const royale::String& name,
+                                          uint32_t& nrStreams) const override;
   royale::CameraStatus getFrameRate(uint16_t& frameRate) const override;
   royale::CameraStatus setExposureTime(uint32_t exposureTime, royale::StreamId streamId) override;
   royale::CameraStatus setExposureMode(royale::ExposureMode exposureMode,

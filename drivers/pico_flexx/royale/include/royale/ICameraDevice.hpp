@@ -27,6 +27,15 @@ class ICameraDevice {
   virtual royale::CameraStatus setUseCase(const royale::String& name) = 0;
   virtual royale::CameraStatus getUseCases(royale::Vector<royale::String>& useCases) const = 0;
   virtual royale::CameraStatus getCurrentUseCase(royale::String& useCase) const = 0;
+  // Key and value pairs about the camera: SERIAL_NUMBER, FIRMWARE_VERSION,
+  // USB_PROTOCOL_VERSION (needs initialize()).
+  virtual royale::CameraStatus getCameraInfo(
+      royale::Vector<royale::Pair<royale::String, royale::String>>& camInfo) const = 0;
+  // The current use case's streams (one here, 0xdefa), and a use case's
+  // number of streams by name.
+  virtual royale::CameraStatus getStreams(royale::Vector<royale::StreamId>& streams) const = 0;
+  virtual royale::CameraStatus getNumberOfStreams(const royale::String& name,
+                                                  uint32_t& nrStreams) const = 0;
   virtual royale::CameraStatus getFrameRate(uint16_t& frameRate) const = 0;
 
   virtual royale::CameraStatus setExposureTime(uint32_t exposureTime,

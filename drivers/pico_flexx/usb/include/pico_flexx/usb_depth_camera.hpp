@@ -42,6 +42,7 @@ class UsbDepthCamera final : public hal::DepthCamera, private RawFrameListener {
   // Why initialize() failed, naming what (the calibration's key and line).
   const std::string& error() const { return error_; }
   UsbCamera& usb() { return usb_; }
+  const UsbCamera& usb() const { return usb_; }
   const RawDepthPipeline* pipeline() const { return pipeline_.get(); }
   // The raw frame behind the depth frame being delivered: read them in the
   // listener's call (the royale layer reports them with the frame).
