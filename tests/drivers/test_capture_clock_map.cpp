@@ -39,15 +39,15 @@ void test_clock_map_other_clock(void**) {
   assert_int_equal(third, 1'425'000);
   assert_true(third <= 1'460'000);
   assert_int_equal(map.reanchors(), 0);
-  // The camera's clock steps back 10 s: the offset starts afresh, counted.
-  const std::int64_t stepped = map.to_host_us(ahead - 10'000'000 + 1'600'000, 1'640'000);
+  // The camera's clock steps back 100 s: the offset starts afresh, counted.
+  const std::int64_t stepped = map.to_host_us(ahead - 100'000'000 + 1'600'000, 1'640'000);
   assert_int_equal(map.reanchors(), 1);
   assert_int_equal(stepped, 1'640'000);
-  // ... and forward 10 s: counted too.
-  (void)map.to_host_us(ahead + 20'000'000, 1'900'000);
+  // ... and forward 100 s: counted too.
+  (void)map.to_host_us(ahead + 200'000'000, 1'900'000);
   assert_int_equal(map.reanchors(), 2);
   // Never after arrival, whatever the stamp.
-  assert_true(map.to_host_us(ahead + 40'000'000, 2'000'000) <= 2'000'000);
+  assert_true(map.to_host_us(ahead + 400'000'000, 2'000'000) <= 2'000'000);
 }
 
 void test_clock_map_leaves_our_clock(void**) {
@@ -97,6 +97,23 @@ void test_clock_map_follows_a_drifting_clock(void**) {
   assert_int_equal(strict.clock(), CaptureClock::kMapped);
 }
 
+// A frame that waited 3 s in the camera's FIFO (a host that stalled) is
+// neither another clock nor a step: it keeps its capture time.
+void test_clock_map_keeps_a_held_frame_s_time(void**) {
+  CaptureClockMapConfig cfg;
+  cfg.same_clock_window_us = -1;
+  CaptureClockMap map(cfg);
+  const std::int64_t camera_ahead_us = 5'000'000'000;
+  for (int k = 0; k < 20; ++k) {
+    const std::int64_t capture_us = 1'000'000 + k * 200'000;
+    (void)map.to_host_us(capture_us + camera_ahead_us, capture_us + 2'000);
+  }
+  const std::int64_t held_capture_us = 5'000'000;
+  assert_int_equal(map.to_host_us(held_capture_us + camera_ahead_us, held_capture_us + 3'000'000),
+                   held_capture_us + 2'000);
+  assert_int_equal(map.reanchors(), 0);
+}
+
 }  // namespace
 
 int main() {
@@ -105,6 +122,7 @@ int main() {
       cmocka_unit_test(test_clock_map_other_clock),
       cmocka_unit_test(test_clock_map_leaves_our_clock),
       cmocka_unit_test(test_clock_map_follows_a_drifting_clock),
+      cmocka_unit_test(test_clock_map_keeps_a_held_frame_s_time),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

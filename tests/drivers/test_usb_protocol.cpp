@@ -206,8 +206,25 @@ void test_assembler_drops(void**) {
   }
   assert_int_equal(a.counts().frames_bad_header, 4);
   assert_string_equal(pico_flexx::to_string(ParseStatus::kBadExposure), "BAD_EXPOSURE");
+  // A capture time past 2^62 us.
+  WireFrame far_future = make_frame(16);
+  put_u32(&far_future.bytes[36], 0x40000000u);  // the stamp's high word: 2^62
+  put_u32(&far_future.bytes[60], crc32(far_future.bytes.data(), 60));
+  assert_int_equal(feed(&a, far_future, 65536), AssemblyEvent::kDropped);
+  assert_int_equal(a.counts().last_header_error, ParseStatus::kBadTime);
+  assert_int_equal(a.counts().frames_bad_header, 5);
   // After all that, good frames still arrive.
   assert_int_equal(feed(&a, make_frame(16), 65536), AssemblyEvent::kFrameReady);
+  // Where a frame begins (its capture time's arrival): at its header's
+  // transfer, also when that header cuts short a frame that lost its end;
+  // never at a transfer inside a frame.
+  const WireFrame cut = make_frame(17), next = make_frame(18);
+  assert_int_equal(a.on_transfer(cut.bytes.data(), 65536, 65536), AssemblyEvent::kNone);
+  assert_true(a.started_frame());
+  assert_int_equal(a.on_transfer(cut.bytes.data() + 65536, 65536, 65536), AssemblyEvent::kNone);
+  assert_false(a.started_frame());
+  assert_int_equal(a.on_transfer(next.bytes.data(), 65536, 65536), AssemblyEvent::kDropped);
+  assert_true(a.started_frame());
 }
 
 // Each refused frame counts once, however many transfers it spans: three

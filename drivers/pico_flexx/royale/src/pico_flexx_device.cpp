@@ -210,8 +210,13 @@ royale::CameraStatus PicoFlexxDevice::registerEventListener(royale::IEventListen
 }
 
 royale::CameraStatus PicoFlexxDevice::unregisterEventListener() {
-  std::lock_guard<std::mutex> lock(event_mutex_);
+  std::unique_lock<std::mutex> lock(event_mutex_);
   event_listener_ = nullptr;
+  // Once this returns the listener is not called again: wait for a call in
+  // progress, unless this is that call (the listener unregistering itself).
+  if (std::this_thread::get_id() != watcher_.get_id()) {
+    event_idle_.wait(lock, [this] { return !in_event_callback_; });
+  }
   return royale::CameraStatus::SUCCESS;
 }
 
@@ -236,9 +241,22 @@ class DeviceEvent final : public royale::IEvent {
 
 void PicoFlexxDevice::emit(royale::EventSeverity severity, royale::EventType type,
                            const char* text) {
-  std::lock_guard<std::mutex> lock(event_mutex_);
-  if (event_listener_ == nullptr) return;
-  event_listener_->onEvent(std::make_unique<DeviceEvent>(severity, type, text));
+  royale::IEventListener* listener = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(event_mutex_);
+    listener = event_listener_;
+    in_event_callback_ = listener != nullptr;
+  }
+  if (listener == nullptr) return;
+  // Called without the lock: the listener may register or unregister
+  // itself, or take locks of its own that its other threads hold while
+  // unregistering.
+  listener->onEvent(std::make_unique<DeviceEvent>(severity, type, text));
+  {
+    std::lock_guard<std::mutex> lock(event_mutex_);
+    in_event_callback_ = false;
+  }
+  event_idle_.notify_all();
 }
 
 void PicoFlexxDevice::watch_for_events() {

@@ -5,6 +5,7 @@
 // royale::DepthData sized at initialize(), so that nothing is allocated
 // per frame.
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <mutex>
 #include <thread>
@@ -75,9 +76,12 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
   royale::DepthData data_{};
   pico_flexx::UsbDepthCamera camera_;
   // Events: the listener, and the thread that finds what to report
-  // (started by the first registration, joined by the destructor).
+  // (started by the first registration, joined by the destructor; so a
+  // listener must not destroy the device from its own call).
   std::mutex event_mutex_;
+  std::condition_variable event_idle_;  // no call to the listener in progress
   royale::IEventListener* event_listener_ = nullptr;
+  bool in_event_callback_ = false;
   std::atomic<bool> watching_{false};
   std::thread watcher_;
   bool reported_lost_ = false;

@@ -45,6 +45,7 @@ void FrameAssembler::restart() {
 AssemblyEvent FrameAssembler::on_transfer(const std::uint8_t* data, std::size_t length,
                                           std::size_t capacity) {
   ++counts_.transfers;
+  started_frame_ = false;
   if (length == 0) {
     // The end of a frame that filled its last transfer exactly; in the
     // middle of a frame it cuts the frame short.
@@ -91,6 +92,7 @@ AssemblyEvent FrameAssembler::start_frame(const std::uint8_t* data, std::size_t 
   }
   header_ = h;
   phase_ = Phase::kInFrame;
+  started_frame_ = true;
   received_bytes_ = 0;
   return continue_frame(data + kFrameHeaderBytes, length - kFrameHeaderBytes,
                         capacity - kFrameHeaderBytes);

@@ -128,6 +128,8 @@ const char* to_string(ParseStatus status) {
       return "BAD_SIZE";
     case ParseStatus::kBadExposure:
       return "BAD_EXPOSURE";
+    case ParseStatus::kBadTime:
+      return "BAD_TIME";
   }
   return "UNKNOWN_PARSE_STATUS";
 }
@@ -248,6 +250,7 @@ ParseStatus parse_frame_header(const std::uint8_t* data, std::size_t length, Fra
   if (h.exposure_us == 0 || h.exposure_us > use_cases[h.use_case_index].max_exposure_us) {
     return ParseStatus::kBadExposure;
   }
+  if (h.capture_time_us >= (std::uint64_t{1} << 62)) return ParseStatus::kBadTime;
   *out = h;
   return ParseStatus::kOk;
 }

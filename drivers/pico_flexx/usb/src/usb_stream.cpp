@@ -131,12 +131,12 @@ void UsbCamera::note_stream_completion(const libusb_transfer* t, std::int64_t no
     last_bytes_us_ = now_us;
     bytes_seen_ = true;
   }
+  const AssemblyEvent e = assembler_.on_transfer(
+      t->buffer, static_cast<std::size_t>(t->actual_length), static_cast<std::size_t>(t->length));
   // A frame's first transfer carries its header: the least delay from the
   // camera's capture to it is one transfer's time, where the last
   // transfer's adds the whole frame's (17 ms for MODE_9 at USB 2.0).
-  if (assembler_.between_frames()) frame_first_transfer_us_ = now_us;
-  const AssemblyEvent e = assembler_.on_transfer(
-      t->buffer, static_cast<std::size_t>(t->actual_length), static_cast<std::size_t>(t->length));
+  if (assembler_.started_frame()) frame_first_transfer_us_ = now_us;
   if (e == AssemblyEvent::kFrameReady) {
     const FrameHeader& h = assembler_.last_header();
     const std::int64_t camera_us = static_cast<std::int64_t>(h.capture_time_us);

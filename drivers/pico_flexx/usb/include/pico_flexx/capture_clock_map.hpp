@@ -20,16 +20,21 @@
 // `window_change_us` reports: the last closed window's least delay less the
 // one before, the mapping's wander over a window. A stamp that then lands
 // more than `max_jump_us` off its arrival (the other clock stepped: NTP, a
-// camera reset) starts the offset afresh; each restart is counted. Pure,
+// camera reset) starts the offset afresh; each restart is counted. A
+// smaller step shows as a quicker frame (a tighter bound at once) or ages
+// out of the windows within two of them. Pure,
 // fixed memory.
 #include <cstdint>
 
 namespace pico_flexx {
 
+// The windows are wider than a camera's FIFO holds frames (45 frames: 9 s
+// at 5 fps), so that a frame that waited there is neither taken for
+// another clock nor for a step of it.
 struct CaptureClockMapConfig {
-  std::int64_t same_clock_window_us = 1000000;  // a stamp up to 1 s old is on our clock
-  std::int64_t max_jump_us = 1000000;           // a mapped stamp this far off arrival: re-anchor
-  std::int64_t window_us = 1000000;             // the least delay is the last 1 to 2 windows'
+  std::int64_t same_clock_window_us = 10000000;  // a stamp up to 10 s old is on our clock
+  std::int64_t max_jump_us = 10000000;           // a mapped stamp this far off arrival: re-anchor
+  std::int64_t window_us = 1000000;              // the least delay is the last 1 to 2 windows'
 };
 
 enum class CaptureClock : std::uint8_t {

@@ -65,8 +65,9 @@ class FrameAssembler {
   // sequence check goes on.
   void abandon_frame() { phase_ = Phase::kBetweenFrames; }
 
-  // Whether the next transfer may start a frame (no frame in progress).
-  bool between_frames() const { return phase_ == Phase::kBetweenFrames; }
+  // Whether the last transfer began a frame (its header parsed), between
+  // frames or inside one whose end was lost.
+  bool started_frame() const { return started_frame_; }
   const AssemblerCounts& counts() const { return counts_; }
   const FrameHeader& last_header() const { return header_; }
   tof::RawFrame* target() { return target_; }
@@ -93,6 +94,7 @@ class FrameAssembler {
   Phase phase_ = Phase::kBetweenFrames;
   std::size_t received_bytes_ = 0;  // payload bytes of the frame in progress
   bool have_sequence_ = false;
+  bool started_frame_ = false;
   std::uint32_t last_sequence_ = 0;
 };
 

@@ -73,6 +73,10 @@ enum class ParseStatus : std::uint8_t {
   // A frame header whose exposure is 0 or longer than its use case allows:
   // a frame exposed so is not what the camera was set to take.
   kBadExposure,
+  // A capture time of 2^62 us or more (146,000 years of the camera's
+  // clock): no counter that started at power-up reads so, and the host's
+  // signed arithmetic on it would overflow.
+  kBadTime,
 };
 const char* to_string(ParseStatus status);
 
