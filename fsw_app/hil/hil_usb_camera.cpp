@@ -14,8 +14,8 @@ HilUsbCamera::HilUsbCamera(const sim_hal::Scenario& scenario, HilWorld& world,
       // path in-process see the same camera.
       renderer_(sim_hal::pico_flexx_intrinsics(), scenario.sensor, sim_hal::RawRenderSettings{},
                 world.camera().unit_calibration()),
-      world_frames_(scenario.scene, world, renderer_, clock, seed),
-      covered_frames_(nothing_, world, renderer_, clock, seed) {}
+      world_frames_(scenario.scene, world, renderer_, seed),
+      covered_frames_(nothing_, world, renderer_, seed) {}
 
 HilUsbCamera::~HilUsbCamera() {
   // The driver lets go of the device before the device goes.
@@ -56,13 +56,14 @@ const std::string& HilUsbCamera::driver_error() const {
   return royale_ ? royale_->error() : driver_->error();
 }
 
-void HilUsbCamera::fill(std::uint64_t frame_index, const hal::UseCase& use_case,
-                        std::uint32_t exposure_us, tof::RawFrame* out) {
-  // umockdev's worker thread, when a frame is due.
-  if (world_.occluded(clock_.now_us())) {
-    covered_frames_.fill(frame_index, use_case, exposure_us, out);
+void HilUsbCamera::fill(std::uint64_t frame_index, std::int64_t capture_host_us,
+                        const hal::UseCase& use_case, std::uint32_t exposure_us,
+                        tof::RawFrame* out) {
+  // umockdev's worker thread, when a frame is sent.
+  if (world_.occluded(capture_host_us)) {
+    covered_frames_.fill(frame_index, capture_host_us, use_case, exposure_us, out);
   } else {
-    world_frames_.fill(frame_index, use_case, exposure_us, out);
+    world_frames_.fill(frame_index, capture_host_us, use_case, exposure_us, out);
   }
 }
 

@@ -69,8 +69,8 @@ class HilUsbCamera final : private sim_hal::RawFrameSource {
  private:
   // The emulated camera's frames: the world from the flyer's true pose, or
   // nothing while the world says the lens is covered.
-  void fill(std::uint64_t frame_index, const hal::UseCase& use_case, std::uint32_t exposure_us,
-            tof::RawFrame* out) override;
+  void fill(std::uint64_t frame_index, std::int64_t capture_host_us, const hal::UseCase& use_case,
+            std::uint32_t exposure_us, tof::RawFrame* out) override;
 
   HilWorld& world_;
   const hal::Clock& clock_;

@@ -161,7 +161,7 @@ void EmulatedPicoFlexx::Impl::begin_frame(std::int64_t capture_host_us) {
   const hal::UseCase& use_case = hal::use_cases(&use_case_count)[use_case_index];
   raw.mode = use_case.raw_frames == 9 ? tof::Mode::kMode9 : tof::Mode::kMode5;
   raw.exposure_us = exposure_automatic ? use_case.max_exposure_us : exposure_us;
-  source->fill(sequence, use_case, exposure_automatic ? 0 : exposure_us, &raw);
+  source->fill(sequence, capture_host_us, use_case, exposure_automatic ? 0 : exposure_us, &raw);
 
   pico_flexx::FrameHeader h;
   h.sequence = sequence;

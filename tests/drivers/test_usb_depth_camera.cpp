@@ -95,7 +95,7 @@ void test_wall_through_usb(void**) {
   sim_hal::RawRenderer renderer(sim_hal::pico_flexx_intrinsics(), sim_hal::ToFSettings{},
                                 sim_hal::RawRenderSettings{}, truth);
   FixedPose pose;
-  sim_hal::RenderedFrameSource source(scene, pose, renderer, clock, 11);
+  sim_hal::RenderedFrameSource source(scene, pose, renderer, 11);
   sim_hal::EmulatedCameraConfig config;
   config.calibration = tof::calibration_to_json(truth);
   std::string error;

@@ -30,8 +30,8 @@ inline std::uint16_t expected_sample(std::uint64_t sequence, std::size_t index) 
 
 class PatternSource final : public sim_hal::RawFrameSource {
  public:
-  void fill(std::uint64_t frame_index, const hal::UseCase& use_case, std::uint32_t exposure_us,
-            tof::RawFrame* out) override {
+  void fill(std::uint64_t frame_index, std::int64_t, const hal::UseCase& use_case,
+            std::uint32_t exposure_us, tof::RawFrame* out) override {
     const std::size_t samples = static_cast<std::size_t>(use_case.raw_frames) * tof::kPixels;
     std::uint16_t* p = out->image(0);
     for (std::size_t i = 0; i < samples; ++i) p[i] = expected_sample(frame_index, i);

@@ -33,7 +33,7 @@ struct EmulatedWallRig {
   bool plug_in(std::string* error) {
     scene.add_wall(Eigen::Vector3d(-1.0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1),
                    40.0, 40.0, 0.6);
-    source = std::make_unique<sim_hal::RenderedFrameSource>(scene, pose, renderer, clock, 11);
+    source = std::make_unique<sim_hal::RenderedFrameSource>(scene, pose, renderer, 11);
     config.calibration = tof::calibration_to_json(truth);
     camera = sim_hal::EmulatedPicoFlexx::create(config, source.get(), clock, error);
     return camera != nullptr;

@@ -33,10 +33,12 @@ class RawFrameSource {
  public:
   virtual ~RawFrameSource() = default;
   // Fills `out` (mode, samples, exposure_us, sensor_temperature_c) with the
-  // frame `frame_index` of `use_case`. `exposure_us` is the commanded
-  // exposure, 0 when the exposure is automatic.
-  virtual void fill(std::uint64_t frame_index, const hal::UseCase& use_case,
-                    std::uint32_t exposure_us, tof::RawFrame* out) = 0;
+  // frame `frame_index` of `use_case`, captured at `capture_host_us` (the
+  // host clock's time it fell due; it may be sent later). `exposure_us` is
+  // the commanded exposure, 0 when the exposure is automatic.
+  virtual void fill(std::uint64_t frame_index, std::int64_t capture_host_us,
+                    const hal::UseCase& use_case, std::uint32_t exposure_us,
+                    tof::RawFrame* out) = 0;
 };
 
 struct EmulatedCameraConfig {

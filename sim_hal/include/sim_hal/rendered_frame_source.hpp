@@ -1,10 +1,11 @@
 #pragma once
 // The emulated camera's frames from the simulated world: the raw-frame
-// renderer (tof_raw_renderer.hpp) at the camera's pose when the frame is
-// made, so that the raw frames the USB driver reads are the simulator's.
+// renderer (tof_raw_renderer.hpp) at the camera's pose at the frame's
+// capture (as the pose source has it then: the hardware-in-loop world
+// gives its current pose), so that the raw frames the USB driver reads are
+// the simulator's.
 #include <cstdint>
 
-#include "hal/clock.hpp"
 #include "sim_hal/emulated_pico_flexx.hpp"
 #include "sim_hal/scene.hpp"
 #include "sim_hal/simulated_camera.hpp"
@@ -16,16 +17,17 @@ class RenderedFrameSource final : public RawFrameSource {
  public:
   // None owned; all must outlive this. `seed` seeds the renderer's noise.
   RenderedFrameSource(const Scene& scene, CameraPoseSource& poses, RawRenderer& renderer,
-                      const hal::Clock& clock, std::uint64_t seed)
-      : scene_(scene), poses_(poses), renderer_(renderer), clock_(clock), seed_(seed) {}
+                      std::uint64_t seed)
+      : scene_(scene), poses_(poses), renderer_(renderer), seed_(seed) {}
 
-  void fill(std::uint64_t frame_index, const hal::UseCase& use_case, std::uint32_t exposure_us,
-            tof::RawFrame* out) override {
+  // The world as the pose source has it at the frame's capture.
+  void fill(std::uint64_t frame_index, std::int64_t capture_host_us, const hal::UseCase& use_case,
+            std::uint32_t exposure_us, tof::RawFrame* out) override {
     const tof::Mode mode = use_case.raw_frames == 9 ? tof::Mode::kMode9 : tof::Mode::kMode5;
     // A commanded exposure is the renderer's manual one; 0 is automatic.
     renderer_.settings().auto_exposure = exposure_us == 0;
     if (exposure_us != 0) renderer_.settings().manual_exposure_us = exposure_us;
-    renderer_.render(scene_, poses_.T_world_cam(clock_.now_us()), mode, use_case.max_exposure_us,
+    renderer_.render(scene_, poses_.T_world_cam(capture_host_us), mode, use_case.max_exposure_us,
                      seed_, frame_index, out);
   }
 
@@ -33,7 +35,6 @@ class RenderedFrameSource final : public RawFrameSource {
   const Scene& scene_;
   CameraPoseSource& poses_;
   RawRenderer& renderer_;
-  const hal::Clock& clock_;
   std::uint64_t seed_;
 };
 
