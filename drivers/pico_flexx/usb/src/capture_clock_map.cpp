@@ -25,7 +25,6 @@ void CaptureClockMap::start_afresh(std::int64_t delay_us, std::int64_t arrival_u
   window_start_us_ = arrival_us;
   window_least_us_ = delay_us;
   have_previous_ = false;
-  closed_windows_ = 0;
   window_change_us_ = 0;
 }
 
@@ -36,7 +35,6 @@ void CaptureClockMap::note_delay(std::int64_t delay_us, std::int64_t arrival_us)
     if (have_previous_) window_change_us_ = window_least_us_ - previous_least_us_;
     previous_least_us_ = window_least_us_;
     have_previous_ = true;
-    ++closed_windows_;
     window_start_us_ = arrival_us;
     window_least_us_ = delay_us;
   } else if (delay_us < window_least_us_) {

@@ -73,7 +73,6 @@ class CaptureClockMap {
   std::int64_t window_least_us_ = 0;
   std::int64_t previous_least_us_ = 0;
   bool have_previous_ = false;
-  int closed_windows_ = 0;
   std::int64_t window_change_us_ = 0;
 };
 
