@@ -166,11 +166,15 @@ void test_streaming_without_loss(void**) {
 
 // Capture times from the camera's own clock (its header's stamp, 30 ppm
 // off the host's, counting from its power-up), moved to the host's clock
-// by the least delay to each frame's first transfer: against the
-// emulator's capture times (when each frame fell due at the imager) the
-// median error must be under a millisecond. Midway the listener holds the
-// event thread for 300 ms once: the frames that waited in the camera's
-// FIFO arrive up to 300 ms late and must still carry their capture times.
+// by the least delay to each frame's first transfer. The driver cannot see
+// the fixed part of that delay (readout and the first transfer's trip), so
+// against the emulator's capture times (when each frame fell due at the
+// imager) the error's floor is the least delay seen, which is longer on a
+// loaded or sanitized build: the median error must stay within a
+// millisecond of that floor. Midway the listener holds the event thread for
+// 300 ms once: the frames that waited in the camera's FIFO arrive up to
+// 300 ms late and must still carry their capture times to within 2 ms of
+// the floor.
 class TimingListener final : public pico_flexx::RawFrameListener {
  public:
   static constexpr int kKept = 200;  // the emulator keeps its newest 256
@@ -204,34 +208,35 @@ void test_capture_times_from_the_camera_clock(void**) {
   assert_int_equal(cam.stop_streaming(), UsbStatus::kOk);
   const int n = std::min(listener.frames.load(), TimingListener::kKept);
   std::vector<double> error_us, arrival_late_us;
-  int disagree = 0, held_frames = 0, held_ok = 0;
+  int disagree = 0;
+  std::vector<double> held_error_us;  // the frames that waited in the FIFO through the hold
   for (int k = 0; k < n; ++k) {
     const TimingListener::Frame& f = listener.kept[static_cast<std::size_t>(k)];
     std::int64_t truth_us = 0;
     if (!g_rig->camera->capture_time_of(f.sequence, &truth_us)) continue;
     disagree += f.info_agrees ? 0 : 1;
-    const double error = static_cast<double>(f.capture_us - truth_us);
+    const double error = std::fabs(static_cast<double>(f.capture_us - truth_us));
     const double late = static_cast<double>(f.first_transfer_us - truth_us);
-    error_us.push_back(std::fabs(error));
+    error_us.push_back(error);
     arrival_late_us.push_back(late);
-    // The frames that waited in the FIFO through the hold.
-    if (late > 100'000) {
-      ++held_frames;
-      held_ok += std::fabs(error) < 2'000 ? 1 : 0;
-    }
+    if (late > 100'000) held_error_us.push_back(error);
   }
   assert_true(error_us.size() >= 150);
   std::sort(error_us.begin(), error_us.end());
   std::sort(arrival_late_us.begin(), arrival_late_us.end());
   const double median_us = error_us[error_us.size() / 2];
+  const double floor_us = std::max(0.0, arrival_late_us.front());
+  int held_ok = 0;
+  for (double e : held_error_us) held_ok += e <= floor_us + 2'000.0 ? 1 : 0;
+  const int held_frames = static_cast<int>(held_error_us.size());
   std::printf(
       "capture times over %zu frames: |error| median %.0f us, 90th percentile %.0f us, "
-      "max %.0f us (first transfer after capture: median %.0f us, max %.0f us); "
-      "%d frames arrived over 100 ms late, %d of them within 2 ms\n",
-      error_us.size(), median_us, error_us[error_us.size() * 9 / 10], error_us.back(),
+      "max %.0f us (first transfer after capture: least %.0f us, median %.0f us, max %.0f us); "
+      "%d frames arrived over 100 ms late, %d of them within 2 ms of the least delay\n",
+      error_us.size(), median_us, error_us[error_us.size() * 9 / 10], error_us.back(), floor_us,
       arrival_late_us[arrival_late_us.size() / 2], arrival_late_us.back(), held_frames, held_ok);
   assert_int_equal(disagree, 0);
-  assert_true(median_us <= 1'000.0);
+  assert_true(median_us <= floor_us + 1'000.0);
   assert_true(held_frames >= 5);
   assert_true(held_ok >= held_frames - 1);
 }
