@@ -127,12 +127,13 @@ void LocalizationTask::note_sigmas() {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) P(r, c) = pose_.pose_covariance[r][c];
   const double sigma_m = std::sqrt(P.diagonal().maxCoeff());
+  // Across the bar: relative to the map (the handrail frame's x, the wall
+  // normal, and y), not in the world, whose covariance holds the map's own.
   double across_m = -1.0;
-  const loc::HandrailMap& map = filter_->handrail_map();
-  if (map.valid) {
-    const Eigen::Vector3d n = map.T_world_handrail.linear().col(0);
-    const Eigen::Vector3d side = map.T_world_handrail.linear().col(1);
-    across_m = std::sqrt(std::max(n.dot(P * n), side.dot(P * side)));
+  const loc::PoseEstimate est = filter_->estimate();
+  if (est.handrail_map_valid) {
+    const Eigen::Matrix3d& Ph = est.handrail_position_cov;
+    across_m = std::sqrt(std::max(Ph(0, 0), Ph(1, 1)));
   }
   position_sigma_m_.store(sigma_m);
   across_bar_sigma_m_.store(across_m);

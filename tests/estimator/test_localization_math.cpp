@@ -17,6 +17,7 @@
 #include "estimator/localization/handrail_map.hpp"
 #include "estimator/localization/handrail_update.hpp"
 #include "estimator/localization/imu_propagation.hpp"
+#include "estimator/localization/map_state.hpp"
 #include "estimator/localization/pose_update.hpp"
 #include "estimator/localization/so3.hpp"
 
@@ -44,7 +45,17 @@ ErrorVector minus(const NominalState& a, const NominalState& b) {
   d.segment<3>(kAtt) = quat_log(a.q_world_body * b.q_world_body.conjugate());
   d.segment<3>(kGyroBias) = a.gyro_bias_radps - b.gyro_bias_radps;
   d.segment<3>(kAccelBias) = a.accel_bias_mps2 - b.accel_bias_mps2;
+  d.segment<3>(kMapPos) = a.p_world_handrail_m - b.p_world_handrail_m;
+  d.segment<3>(kMapAtt) = quat_log(a.q_world_handrail * b.q_world_handrail.conjugate());
   return d;
+}
+
+HandrailMap some_map() {
+  HandrailMap m;
+  m.valid = true;
+  m.T_world_handrail.linear() = quat_exp(Eigen::Vector3d(0.01, 0.02, -0.03)).toRotationMatrix();
+  m.T_world_handrail.translation() = Eigen::Vector3d(0.061, 0.01, 0.0);
+  return m;
 }
 
 NominalState some_state() {
@@ -54,15 +65,11 @@ NominalState some_state() {
   x.q_world_body = quat_exp(Eigen::Vector3d(0.05, -0.03, 0.2));
   x.gyro_bias_radps = {0.002, -0.001, 0.0015};
   x.accel_bias_mps2 = {0.01, -0.02, 0.005};
+  // The map in the state is some_map()'s.
+  const HandrailMap m = some_map();
+  x.p_world_handrail_m = m.T_world_handrail.translation();
+  x.q_world_handrail = Eigen::Quaterniond(m.T_world_handrail.linear());
   return x;
-}
-
-HandrailMap some_map() {
-  HandrailMap m;
-  m.valid = true;
-  m.T_world_handrail.linear() = quat_exp(Eigen::Vector3d(0.01, 0.02, -0.03)).toRotationMatrix();
-  m.T_world_handrail.translation() = Eigen::Vector3d(0.061, 0.01, 0.0);
-  return m;
 }
 
 template <int D, class Model>
@@ -169,9 +176,9 @@ void test_blockwise_covariance_equals_dense(void**) {
   NominalState x = some_state();
   std::mt19937_64 rng(7);
   std::normal_distribution<double> n(0.0, 1.0);
-  Eigen::Matrix<double, 15, 15> A;
-  for (int i = 0; i < 15; ++i)
-    for (int j = 0; j < 15; ++j) A(i, j) = n(rng);
+  Eigen::Matrix<double, kErrorDim, kErrorDim> A;
+  for (int i = 0; i < kErrorDim; ++i)
+    for (int j = 0; j < kErrorDim; ++j) A(i, j) = n(rng);
   Covariance P = A * A.transpose() + Covariance::Identity();
   const Covariance P0 = P;
   ImuSample a, b;
@@ -258,7 +265,7 @@ void test_gp_jacobian(void**) {
 HandrailFeature some_feature(const NominalState& x, const HandrailMap& map,
                              const Eigen::Vector3d& p_handrail) {
   const LocalizationConfig cfg;
-  const FeatureContext c = feature_context(map, x, cfg.T_body_cam);
+  const FeatureContext c = feature_context(x, cfg.T_body_cam);
   HandrailFeature f;
   f.p_handrail_m = p_handrail;
   f.p_cam_m = c.R_cam_world * (map.T_world_handrail * p_handrail - c.p_world_cam_m) +
@@ -273,11 +280,10 @@ void test_feature_jacobian_eqs_6_to_10(void**) {
   for (const Eigen::Vector3d& ph :
        {Eigen::Vector3d(0.0175, 0.0, 0.2), Eigen::Vector3d(-0.061, 0.15, -0.1)}) {
     const HandrailFeature f = some_feature(x, map, ph);
-    const BlockObservation<3> m =
-        feature_observation(feature_context(map, x, cfg.T_body_cam), f, 0.004);
+    const BlockObservation<3> m = feature_observation(feature_context(x, cfg.T_body_cam), f, 0.004);
     const auto h = [&](const NominalState& y) {
-      return Eigen::Vector3d(
-          f.p_cam_m - feature_observation(feature_context(map, y, cfg.T_body_cam), f, 0.004).r);
+      return Eigen::Vector3d(f.p_cam_m -
+                             feature_observation(feature_context(y, cfg.T_body_cam), f, 0.004).r);
     };
     check_jacobian<3>(m.H, h, x, 1e-6);
     assert_true(m.R.isApprox(0.004 * 0.004 * Eigen::Matrix3d::Identity()));
@@ -289,7 +295,7 @@ void test_feature_jacobian_eqs_11_to_13(void**) {
   const NominalState x = some_state();
   const HandrailMap map = some_map();
   // The detected frame: the predicted one turned by half a degree.
-  const FeatureContext c0 = feature_context(map, x, cfg.T_body_cam);
+  const FeatureContext c0 = feature_context(x, cfg.T_body_cam);
   const Eigen::Matrix3d R_cam_handrail =
       c0.R_cam_world * map.T_world_handrail.linear() *
       quat_exp(Eigen::Vector3d(0.005, -0.004, 0.003)).toRotationMatrix();
@@ -300,10 +306,9 @@ void test_feature_jacobian_eqs_11_to_13(void**) {
     // h'(x) = z' - r'(x), with z' the measurement rotated as in eq. 12.
     const Eigen::Vector2d z2 = R_cam_handrail.leftCols<2>().transpose() * f.p_cam_m;
     const auto h = [&](const NominalState& y) {
-      return Eigen::Vector2d(z2 -
-                             feature_observation_no_end(feature_context(map, y, cfg.T_body_cam), f,
-                                                        R_cam_handrail, 0.004, reanchor)
-                                 .r);
+      return Eigen::Vector2d(z2 - feature_observation_no_end(feature_context(y, cfg.T_body_cam), f,
+                                                             R_cam_handrail, 0.004, reanchor)
+                                      .r);
     };
     // Re-anchored, the Jacobian is exact to first order in the residual
     // (a few mm here): a looser tolerance.
@@ -318,7 +323,7 @@ void test_no_end_reanchoring_removes_the_along_bar_leak(void**) {
   const LocalizationConfig cfg;
   const NominalState x = some_state();
   const HandrailMap map = some_map();
-  const FeatureContext c = feature_context(map, x, cfg.T_body_cam);
+  const FeatureContext c = feature_context(x, cfg.T_body_cam);
   const Eigen::Matrix3d R_pred = c.R_cam_world * map.T_world_handrail.linear();
   const Eigen::Matrix3d R_det =
       R_pred * quat_exp(Eigen::Vector3d(1.0 * kDeg, 0, 0)).toRotationMatrix();
@@ -338,6 +343,67 @@ void test_no_end_reanchoring_removes_the_along_bar_leak(void**) {
   const BlockObservation<2> m = feature_observation_no_end(c, f, R_det, 0.004, true);
   const Eigen::Vector3d axis = map.T_world_handrail.linear().col(2);
   assert_true((m.H.block<2, 3>(0, kPos) * axis).norm() < 1e-12);
+  assert_true((m.H.block<2, 3>(0, kMapPos) * axis).norm() < 1e-12);
+}
+
+// A map placed from the robot's pose carries the robot's error: the map
+// block's cross-covariance J P must be the true first-order dependence of
+// the sighted map on the robot's pose (checked by finite differences of
+// T_world_body T_body_handrail), and the map's own covariance J P J^T plus
+// the sighting's noise.
+void test_sighted_map_inherits_the_robot_error(void**) {
+  LocalizationConfig cfg;
+  NominalState x = some_state();
+  Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
+  T_world_body.linear() = x.q_world_body.toRotationMatrix();
+  T_world_body.translation() = x.p_world_body_m;
+  const Eigen::Isometry3d T_body_handrail = T_world_body.inverse() * some_map().T_world_handrail;
+  // A covariance with robot entries only: diagonal, so that P's columns
+  // pick out J's.
+  Covariance P = 1e-4 * Covariance::Identity();
+  attach_sighted_map(cfg, T_world_body * T_body_handrail, &x, &P);
+  assert_true(check_covariance(P) == Health::kOk);
+  const auto sighted = [&](const NominalState& y) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = y.q_world_body.toRotationMatrix();
+    T.translation() = y.p_world_body_m;
+    NominalState m = y;
+    const Eigen::Isometry3d T_map = T * T_body_handrail;
+    m.p_world_handrail_m = T_map.translation();
+    m.q_world_handrail = Eigen::Quaterniond(T_map.linear());
+    return m;
+  };
+  for (int i = 0; i < kMapPos; ++i) {
+    const double eps = 1e-6;
+    ErrorVector d = ErrorVector::Zero();
+    d(i) = eps;
+    const ErrorVector num =
+        (minus(sighted(plus(x, d)), x) - minus(sighted(plus(x, -d)), x)) / (2 * eps);
+    // P(map, i) / P(i, i) is J's column i.
+    const Eigen::Matrix<double, 6, 1> J_col = P.block<6, 1>(kMapPos, i) / 1e-4;
+    if ((num.segment<6>(kMapPos) - J_col).cwiseAbs().maxCoeff() > 1e-6) {
+      print_error("map column %d: numeric vs attached differ\n", i);
+      fail();
+    }
+  }
+  // Position: the robot's 1 cm plus the attitude's 1 cm per metre of lever
+  // plus the sighting's 1 cm.
+  const double lever2 = (x.p_world_handrail_m - x.p_world_body_m).squaredNorm();
+  const double sigma2 = cfg.map_sighting_position_sigma_m * cfg.map_sighting_position_sigma_m;
+  const double map_var = P.block<3, 3>(kMapPos, kMapPos).trace();
+  assert_true(map_var > 3e-4 + 3 * sigma2);
+  assert_near(map_var, 3e-4 + 2e-4 * lever2 + 3 * sigma2, 1e-9);
+  // A survey: its own sigmas, uncorrelated.
+  HandrailMap survey = some_map();
+  survey.surveyed = true;
+  survey.position_sigma_m = 0.002;
+  survey.attitude_sigma_rad = 0.001;
+  attach_surveyed_map(survey, &x, &P);
+  const bool uncorrelated = P.block<6, kMapPos>(kMapPos, 0).isZero();
+  assert_true(uncorrelated);
+  assert_near(P(kMapPos, kMapPos), 0.002 * 0.002 + 1e-8, 1e-15);
+  assert_near(P(kMapAtt, kMapAtt), 0.001 * 0.001 + 1e-10, 1e-15);
+  assert_true(check_covariance(P) == Health::kOk);
 }
 
 // ------------------------------------------------------------- Joseph
@@ -345,14 +411,14 @@ void test_no_end_reanchoring_removes_the_along_bar_leak(void**) {
 void test_sequential_joseph_equals_stacked(void**) {
   std::mt19937_64 rng(3);
   std::normal_distribution<double> n(0.0, 1.0);
-  Eigen::Matrix<double, 15, 15> A;
-  for (int i = 0; i < 15; ++i)
-    for (int j = 0; j < 15; ++j) A(i, j) = 0.1 * n(rng);
+  Eigen::Matrix<double, kErrorDim, kErrorDim> A;
+  for (int i = 0; i < kErrorDim; ++i)
+    for (int j = 0; j < kErrorDim; ++j) A(i, j) = 0.1 * n(rng);
   const Covariance P0 = A * A.transpose() + 1e-3 * Covariance::Identity();
   BlockObservation<3> b1, b2;
   BlockObservation<6> stacked;
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 15; ++j) {
+    for (int j = 0; j < kErrorDim; ++j) {
       b1.H(i, j) = n(rng);
       b2.H(i, j) = n(rng);
     }
@@ -378,7 +444,7 @@ void test_sequential_joseph_equals_stacked(void**) {
   assert_near(n1 + n2, nb, 1e-9 * nb);
   // Joseph against the textbook P - K S K^T at the optimal gain.
   const Eigen::Matrix<double, 6, 6> S = stacked.H * P0 * stacked.H.transpose() + stacked.R;
-  const Eigen::Matrix<double, 15, 6> K = P0 * stacked.H.transpose() * S.inverse();
+  const Eigen::Matrix<double, kErrorDim, 6> K = P0 * stacked.H.transpose() * S.inverse();
   const Covariance short_form = P0 - K * S * K.transpose();
   assert_true((Pb - short_form).cwiseAbs().maxCoeff() < 1e-12);
   assert_true(check_covariance(Pb) == Health::kOk);
@@ -394,6 +460,38 @@ void test_sequential_joseph_equals_stacked(void**) {
   ErrorVector dxc = ErrorVector::Zero();
   assert_false(joseph_update(bad, &Pc, &dxc, &nis));
   assert_true(Pc == P0);
+}
+
+// The body in the handrail's frame and its covariance: a robot whose error
+// is the map's (fully correlated, as right after a sighting with no
+// detection noise) is exactly known relative to the bar.
+void test_body_in_handrail(void**) {
+  NominalState x = some_state();
+  const Eigen::Vector3d p_h = body_in_handrail(x);
+  const HandrailMap map = some_map();
+  assert_true((p_h - map.T_world_handrail.inverse() * x.p_world_body_m).norm() < 1e-12);
+  // Its Jacobian by finite differences, through the covariance of unit
+  // variances one state at a time.
+  for (int i = 0; i < kErrorDim; ++i) {
+    const double eps = 1e-6;
+    ErrorVector d = ErrorVector::Zero();
+    d(i) = eps;
+    const Eigen::Vector3d num =
+        (body_in_handrail(plus(x, d)) - body_in_handrail(plus(x, -d))) / (2 * eps);
+    Covariance P = Covariance::Zero();
+    P(i, i) = 1.0;
+    const Eigen::Matrix3d C = body_in_handrail_cov(x, P);
+    if ((C - num * num.transpose()).cwiseAbs().maxCoeff() > 1e-8) {
+      print_error("state %d: body-in-handrail covariance differs\n", i);
+      fail();
+    }
+  }
+  LocalizationConfig cfg;
+  cfg.map_sighting_position_sigma_m = 1e-9;
+  cfg.map_sighting_attitude_sigma_rad = 1e-9;
+  Covariance P = 1e-4 * Covariance::Identity();
+  attach_sighted_map(cfg, map.T_world_handrail, &x, &P);
+  assert_true(body_in_handrail_cov(x, P).trace() < 1e-12);
 }
 
 void test_covariance_checks(void**) {
@@ -461,16 +559,16 @@ void test_axis_alignment_with_the_map(void**) {
   const LocalizationConfig cfg;
   const NominalState x = some_state();
   const HandrailMap map = some_map();
-  const FeatureContext c = feature_context(map, x, cfg.T_body_cam);
+  const FeatureContext c = feature_context(x, cfg.T_body_cam);
   SelectedFeatures s;
   s.state = HandrailState::kBothEnds;
   s.R_cam_handrail = flip_axis(c.R_cam_world * map.T_world_handrail.linear());
   s.num_features = 1;
   s.features[0].p_handrail_m = {0.01, 0.02, 0.2};
-  align_with_map(map, x, cfg.T_body_cam, &s);
+  align_with_map(x, cfg.T_body_cam, &s);
   assert_true(s.R_cam_handrail.isApprox(c.R_cam_world * map.T_world_handrail.linear(), 1e-12));
   assert_true(s.features[0].p_handrail_m.isApprox(Eigen::Vector3d(0.01, -0.02, -0.2)));
-  align_with_map(map, x, cfg.T_body_cam, &s);  // aligned: unchanged
+  align_with_map(x, cfg.T_body_cam, &s);  // aligned: unchanged
   assert_true(s.features[0].p_handrail_m.isApprox(Eigen::Vector3d(0.01, -0.02, -0.2)));
 }
 
@@ -558,7 +656,9 @@ int main() {
       cmocka_unit_test(test_feature_jacobian_eqs_6_to_10),
       cmocka_unit_test(test_feature_jacobian_eqs_11_to_13),
       cmocka_unit_test(test_no_end_reanchoring_removes_the_along_bar_leak),
+      cmocka_unit_test(test_sighted_map_inherits_the_robot_error),
       cmocka_unit_test(test_sequential_joseph_equals_stacked),
+      cmocka_unit_test(test_body_in_handrail),
       cmocka_unit_test(test_covariance_checks),
       cmocka_unit_test(test_feature_thinning),
       cmocka_unit_test(test_axis_alignment_with_the_map),

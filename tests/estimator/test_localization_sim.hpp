@@ -293,8 +293,8 @@ class Sim {
 // The filter's estimate of the body position in the handrail frame: in its
 // map's frame when it has one, else in the true handrail's (GP-only).
 inline Eigen::Vector3d estimated_p_handrail_body(const LocalizationFilter& f, const Sim& sim) {
-  const Eigen::Isometry3d& T =
-      f.handrail_map().valid ? f.handrail_map().T_world_handrail : sim.T_world_handrail();
+  const HandrailMap map = f.handrail_map();
+  const Eigen::Isometry3d T = map.valid ? map.T_world_handrail : sim.T_world_handrail();
   return T.inverse() * f.state().p_world_body_m;
 }
 

@@ -318,7 +318,7 @@ int main(int argc, char** argv) {
       }
     }
     if (t_run < 0.0 || k % 5 != 0 || !localizer.filter().initialized()) continue;
-    const estimator::localization::HandrailMap& map = localizer.filter().handrail_map();
+    const estimator::localization::HandrailMap map = localizer.filter().handrail_map();
     const Eigen::Isometry3d T_est = fsw_app::from_msg(localizer.last_pose().T_world_body);
     const Eigen::Isometry3d T_true_at =
         path.T_world_body(1e-6 * static_cast<double>(localizer.last_pose().utime));

@@ -264,7 +264,7 @@ int main(int argc, char** argv) {
       err_all.add(err_mm.norm());
       if (pose.handrail_holding) err_held.add(err_mm.norm());
     }
-    const loc::HandrailMap& map = task.filter().handrail_map();
+    const loc::HandrailMap map = task.filter().handrail_map();
     if (scored && !handrails.empty()) {
       Eigen::Isometry3d T_est = Eigen::Isometry3d::Identity();
       T_est.linear() = pose.q_world_body.normalized().toRotationMatrix();

@@ -76,6 +76,9 @@ const char* validate(const LocalizationConfig& c) {
     return "map_init_max_position_sigma_m";
   if (c.map_reset_after_rejections < 1 || c.map_reset_after_rejections > 10000)
     return "map_reset_after_rejections";
+  if (!positive_below(c.map_sighting_position_sigma_m, 1.0)) return "map_sighting_position_sigma_m";
+  if (!positive_below(c.map_sighting_attitude_sigma_rad, 1.0))
+    return "map_sighting_attitude_sigma_rad";
   if (!in(c.handrail_hold_s, 0.0, 60.0)) return "handrail_hold_s";
   return nullptr;
 }

@@ -32,7 +32,7 @@ bool joseph_update(const BlockObservation<D>& m, Covariance* P, ErrorVector* dx,
   const Eigen::LLT<MatD> llt(S);
   if (llt.info() != Eigen::Success) return false;
   // K = P H^T S^-1 (S is D x D, D <= 6: its inverse from the factor is cheap
-  // and better conditioned than solving 15 right-hand sides one by one).
+  // and better conditioned than solving 21 right-hand sides one by one).
   const MatD S_inv = llt.solve(MatD::Identity());
   const MatND K = PHt.lazyProduct(S_inv);
   const double block = r.dot(S_inv.lazyProduct(r));
@@ -40,8 +40,8 @@ bool joseph_update(const BlockObservation<D>& m, Covariance* P, ErrorVector* dx,
   *nis = block;
   *dx += K.lazyProduct(r);
   // Joseph form with A = I - K H, using the block's low rank: A P =
-  // P - K (H P) and (A P) A^T = A P - ((A P) H^T) K^T, 3 * 15 * 15 * D
-  // multiplications instead of two dense 15 x 15 products.
+  // P - K (H P) and (A P) A^T = A P - ((A P) H^T) K^T, 3 * 21 * 21 * D
+  // multiplications instead of two dense 21 x 21 products.
   const Covariance AP = *P - K.lazyProduct(PHt.transpose());
   const MatND APHt = AP.lazyProduct(m.H.transpose());
   const MatND KR = K.lazyProduct(m.R);

@@ -95,11 +95,11 @@ void select_features(const HandrailMeasurement& m, int max_bar, int max_wall,
   thin(m, FeatureKind::kWall, std::min(max_wall, kMaxUsedWallFeatures), out);
 }
 
-void align_with_map(const HandrailMap& map, const NominalState& x,
-                    const Eigen::Isometry3d& T_body_cam, SelectedFeatures* s) {
+void align_with_map(const NominalState& x, const Eigen::Isometry3d& T_body_cam,
+                    SelectedFeatures* s) {
   const Eigen::Matrix3d R_world_cam = x.q_world_body.toRotationMatrix() * T_body_cam.linear();
   const Eigen::Vector3d axis_world = R_world_cam * s->R_cam_handrail.col(2);
-  if (axis_world.dot(map.T_world_handrail.linear().col(2)) >= 0.0) return;
+  if (axis_world.dot(x.q_world_handrail * Eigen::Vector3d::UnitZ()) >= 0.0) return;
   s->R_cam_handrail = flip_axis(s->R_cam_handrail);
   for (int k = 0; k < s->num_features; ++k) {
     Eigen::Vector3d& p = s->features[static_cast<std::size_t>(k)].p_handrail_m;
@@ -108,28 +108,31 @@ void align_with_map(const HandrailMap& map, const NominalState& x,
   }
 }
 
-FeatureContext feature_context(const HandrailMap& map, const NominalState& x,
-                               const Eigen::Isometry3d& T_body_cam) {
+FeatureContext feature_context(const NominalState& x, const Eigen::Isometry3d& T_body_cam) {
   FeatureContext c;
   const Eigen::Matrix3d R_world_body = x.q_world_body.toRotationMatrix();
   c.R_cam_world = (R_world_body * T_body_cam.linear()).transpose();  // eq. 7
   c.lever_world_m = R_world_body * T_body_cam.translation();         // R_WB ^B p_C
   c.p_world_cam_m = x.p_world_body_m + c.lever_world_m;              // eq. 7
-  c.R_world_handrail = map.T_world_handrail.linear();
-  c.p_world_handrail_m = map.T_world_handrail.translation();
+  c.R_world_handrail = x.q_world_handrail.toRotationMatrix();
+  c.p_world_handrail_m = x.p_world_handrail_m;
   return c;
 }
 
 BlockObservation<3> feature_observation(const FeatureContext& c, const HandrailFeature& f,
                                         double sigma_m) {
   BlockObservation<3> m;
-  const Eigen::Vector3d p_world_feature =
-      c.p_world_handrail_m + c.R_world_handrail * f.p_handrail_m;
+  const Eigen::Vector3d lever_map_world_m = c.R_world_handrail * f.p_handrail_m;
+  const Eigen::Vector3d p_world_feature = c.p_world_handrail_m + lever_map_world_m;
   const Eigen::Vector3d z_hat = c.R_cam_world * (p_world_feature - c.p_world_cam_m);  // eq. 6
   m.r = f.p_cam_m - z_hat;                                                            // eq. 9
   // Eq. 10 in the camera's error, then into the filter's error (state.hpp).
   m.H.block<3, 3>(0, kPos) = -c.R_cam_world;
   m.H.block<3, 3>(0, kAtt) = skew(z_hat) * c.R_cam_world + c.R_cam_world * skew(c.lever_world_m);
+  // The map's error moves the predicted point: dp_map in full, dth_map by
+  // its lever arm from the handrail's origin (eq. 8 perturbed).
+  m.H.block<3, 3>(0, kMapPos) = c.R_cam_world;
+  m.H.block<3, 3>(0, kMapAtt) = -c.R_cam_world * skew(lever_map_world_m);
   m.R = sigma_m * sigma_m * Eigen::Matrix3d::Identity();
   return m;
 }
@@ -165,21 +168,14 @@ BlockObservation<2> feature_observation_no_end(const FeatureContext& c, const Ha
 }
 
 UpdateResult handrail_update(const LocalizationConfig& cfg, const ChiSquareGate& gate,
-                             const HandrailMap& map, const SelectedFeatures& s, NominalState* x,
-                             Covariance* P) {
+                             const SelectedFeatures& s, NominalState* x, Covariance* P) {
   UpdateResult res;
   const bool no_end = s.state == HandrailState::kNoEnd;
   const int dim = no_end ? 2 : 3;
-  const FeatureContext c = feature_context(map, *x, cfg.T_body_cam);
-  // A surveyed map's own uncertainty adds to every feature's: its position
-  // error in full, its attitude error times the feature's lever arm from
-  // the handrail's origin (both zero for a map from sightings).
-  const double map_var_m2 = map.position_sigma_m * map.position_sigma_m;
-  const double map_att_var = map.attitude_sigma_rad * map.attitude_sigma_rad;
+  const FeatureContext c = feature_context(*x, cfg.T_body_cam);
+  // The map's own uncertainty is in the state (state.hpp), not here.
   const auto sigma = [&](const HandrailFeature& f) {
-    const double own_m =
-        f.kind == FeatureKind::kBar ? cfg.bar_feature_sigma_m : cfg.wall_feature_sigma_m;
-    return std::sqrt(own_m * own_m + map_var_m2 + map_att_var * f.p_handrail_m.squaredNorm());
+    return f.kind == FeatureKind::kBar ? cfg.bar_feature_sigma_m : cfg.wall_feature_sigma_m;
   };
   // Each feature against the prior: a stray point is dropped before it can
   // pull the stack (the order of the features does not matter here).

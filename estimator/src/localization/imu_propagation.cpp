@@ -44,7 +44,7 @@ void apply_transition(const TransitionBlocks& b, Covariance* P) {
                           b.v_bg.lazyProduct(Q.middleRows<3>(kGyroBias)) +
                           b.v_ba.lazyProduct(Q.middleRows<3>(kAccelBias));
   M.middleRows<3>(kAtt) = Q.middleRows<3>(kAtt) + b.att_bg.lazyProduct(Q.middleRows<3>(kGyroBias));
-  M.middleRows<6>(kGyroBias) = Q.middleRows<6>(kGyroBias);
+  M.middleRows<12>(kGyroBias) = Q.middleRows<12>(kGyroBias);  // biases and map: identity
 
   Covariance& out = *P;
   out.middleCols<3>(kPos) = M.middleCols<3>(kPos) + b.dt * M.middleCols<3>(kVel) +
@@ -57,7 +57,7 @@ void apply_transition(const TransitionBlocks& b, Covariance* P) {
                             M.middleCols<3>(kAccelBias).lazyProduct(b.v_ba.transpose());
   out.middleCols<3>(kAtt) =
       M.middleCols<3>(kAtt) + M.middleCols<3>(kGyroBias).lazyProduct(b.att_bg.transpose());
-  out.middleCols<6>(kGyroBias) = M.middleCols<6>(kGyroBias);
+  out.middleCols<12>(kGyroBias) = M.middleCols<12>(kGyroBias);
 }
 
 void add_diagonal(Covariance* P, int block, double variance) {

@@ -6,6 +6,7 @@
 #include "estimator/localization/covariance_check.hpp"
 #include "estimator/localization/handrail_update.hpp"
 #include "estimator/localization/imu_propagation.hpp"
+#include "estimator/localization/map_state.hpp"
 #include "estimator/localization/pose_update.hpp"
 #include "estimator/localization/so3.hpp"
 
@@ -35,6 +36,7 @@ Covariance initial_covariance(const LocalizationConfig& cfg, const PoseCovarianc
   set(kVel, cfg.init_velocity_sigma_mps);
   set(kGyroBias, cfg.init_gyro_bias_sigma_radps);
   set(kAccelBias, cfg.init_accel_bias_sigma_mps2);
+  clear_map_block(&P);
   return P;
 }
 
@@ -60,6 +62,7 @@ void LocalizationFilter::reset() {
 
 void LocalizationFilter::reset_handrail_map() {
   drop_map();
+  put_back_survey();
 }
 
 UpdateStatus LocalizationFilter::set_handrail_survey(const HandrailMap& survey) {
@@ -68,6 +71,7 @@ UpdateStatus LocalizationFilter::set_handrail_survey(const HandrailMap& survey) 
   survey_ = survey;
   survey_.valid = survey_.surveyed = true;
   drop_map();
+  put_back_survey();
   return st;
 }
 
@@ -84,6 +88,41 @@ void LocalizationFilter::drop_map() {
   ++map_generation_;
   have_handrail_accept_ = false;
   handrail_rejections_in_row_ = 0;
+}
+
+void LocalizationFilter::put_back_survey() {
+  if (!survey_.valid || !initialized_ || history_.empty() || !history_.newest().has_state) return;
+  Prior& pr = prior_;
+  if (!prior_at(time_us(), &pr)) return;
+  attach_map_at(pr, survey_);
+}
+
+void LocalizationFilter::attach_map_at(const Prior& pr, const HandrailMap& map) {
+  StoredMeasurement& ev = scratch_;
+  ev.kind = MeasurementKind::kHandrailEnds;
+  ev.t_us = pr.t_us;
+  ev.seq = ++seq_;
+  ev.map_generation = map_generation_;
+  ev.map_attach = true;
+  ev.map = map;
+  NominalState x = pr.x;
+  Covariance P = pr.P;
+  if (map.surveyed) {
+    attach_surveyed_map(map, &x, &P);
+  } else {
+    attach_sighted_map(cfg_, map.T_world_handrail, &x, &P);
+  }
+  store_and_replay(ev, pr, x, P);
+}
+
+HandrailMap LocalizationFilter::handrail_map() const {
+  HandrailMap m = map_.map();
+  if (m.valid && initialized_) {
+    const NominalState& x = state();
+    m.T_world_handrail.linear() = x.q_world_handrail.toRotationMatrix();
+    m.T_world_handrail.translation() = x.p_world_handrail_m;
+  }
+  return m;
 }
 
 bool LocalizationFilter::handrail_holding() const {
@@ -128,6 +167,10 @@ PoseEstimate LocalizationFilter::estimate() const {
   e.pose_cov.block<3, 3>(3, 0) = P.block<3, 3>(kAtt, kPos);
   e.pose_cov.block<3, 3>(3, 3) = P.block<3, 3>(kAtt, kAtt);
   e.velocity_cov = P.block<3, 3>(kVel, kVel);
+  if (e.handrail_map_valid && initialized_) {
+    e.p_handrail_body_m = body_in_handrail(x);
+    e.handrail_position_cov = body_in_handrail_cov(x, P);
+  }
   return e;
 }
 
@@ -188,11 +231,20 @@ void LocalizationFilter::raise_floor_past(std::int64_t t_us) {
 
 void LocalizationFilter::apply_stored(const StoredMeasurement& m, NominalState* x, Covariance* P) {
   UpdateResult r;
+  if (m.map_attach) {
+    if (m.map_generation != map_generation_) return;
+    if (m.map.surveyed) {
+      attach_surveyed_map(m.map, x, P);
+    } else {
+      attach_sighted_map(cfg_, m.map.T_world_handrail, x, P);
+    }
+    return;
+  }
   if (m.kind == MeasurementKind::kGpPose) {
     r = gp_update(gate_, m.gp, x, P);
   } else {
     if (!map_.map().valid || m.map_generation != map_generation_) return;
-    r = handrail_update(cfg_, gate_, map_.map(), m.handrail, x, P);
+    r = handrail_update(cfg_, gate_, m.handrail, x, P);
   }
   if (r.status != UpdateStatus::kAccepted) ++counters_.replay_rejections;
 }
@@ -305,7 +357,10 @@ UpdateStatus LocalizationFilter::initialize_from(const GpPose& g, std::int64_t t
   store_.clear();
   initialized_ = true;
   lost_ = false;
-  restart_at(pr, x, initial_covariance(cfg_, g.cov));
+  Covariance P = initial_covariance(cfg_, g.cov);
+  // A survey is the map from the start.
+  if (survey_.valid) attach_surveyed_map(survey_, &x, &P);
+  restart_at(pr, x, P);
   return UpdateStatus::kInitialized;
 }
 
@@ -337,6 +392,12 @@ UpdateStatus LocalizationFilter::relocalize_to(const GpPose& g, const Prior& pr,
   store_.clear();
   if (map_.map().valid) ++counters_.map_resets;
   drop_map();
+  // The map went with the old estimate; a survey is independent of it.
+  if (survey_.valid) {
+    attach_surveyed_map(survey_, &x, &P);
+  } else {
+    clear_map_block(&P);
+  }
   lost_ = false;
   gp_rejections_in_row_ = gp_any_rejections_in_row_ = 0;
   restart_at(pr, x, P);
@@ -398,6 +459,7 @@ UpdateStatus LocalizationFilter::add_gp_pose(const GpPose& g) {
     m.kind = kind;
     m.t_us = t_eff;
     m.seq = ++seq_;
+    m.map_attach = false;
     m.gp = g;
     store_and_replay(m, pr, x, P);
   } else if (st == UpdateStatus::kRejectedGate || st == UpdateStatus::kRejectedJump) {
@@ -456,6 +518,7 @@ UpdateStatus LocalizationFilter::add_handrail(const HandrailMeasurement& m) {
       if (st == UpdateStatus::kMapInitialized) {
         ++map_generation_;
         handrail_rejections_in_row_ = 0;
+        attach_map_at(pr, map_.map());
       }
     }
     last_.status = st;
@@ -465,10 +528,10 @@ UpdateStatus LocalizationFilter::add_handrail(const HandrailMeasurement& m) {
 
   StoredMeasurement& sm = scratch_;
   select_features(m, cfg_.max_bar_features, cfg_.max_wall_features, &sm.handrail);
-  align_with_map(map_.map(), pr.x, cfg_.T_body_cam, &sm.handrail);
+  align_with_map(pr.x, cfg_.T_body_cam, &sm.handrail);
   NominalState x = pr.x;
   Covariance P = pr.P;
-  last_ = handrail_update(cfg_, gate_, map_.map(), sm.handrail, &x, &P);
+  last_ = handrail_update(cfg_, gate_, sm.handrail, &x, &P);
   st = last_.status;
   counters_.features_gated += static_cast<std::uint32_t>(last_.features_gated);
   if (st == UpdateStatus::kAccepted) {
@@ -481,10 +544,12 @@ UpdateStatus LocalizationFilter::add_handrail(const HandrailMeasurement& m) {
     sm.t_us = t_eff;
     sm.seq = ++seq_;
     sm.map_generation = map_generation_;
+    sm.map_attach = false;
     store_and_replay(sm, pr, x, P);
   } else if (st == UpdateStatus::kRejectedGate) {
     if (++handrail_rejections_in_row_ >= cfg_.map_reset_after_rejections) {
       drop_map();
+      put_back_survey();
       ++counters_.map_resets;
     }
   }

@@ -59,14 +59,15 @@ struct LocalizationTaskCounters {
   // GP poses the filter accepted after the handrail had held the pose and
   // stopped holding it: the fall-back on the GP when the handrail is lost.
   std::uint64_t gp_fallback_accepted = 0;
-  // The filter's position sigma (largest axis) in the newest pose published,
-  // and the smallest published while the handrail held the pose (-1: never).
+  // The filter's world position sigma (largest axis) in the newest pose
+  // published, and the smallest published while the handrail held the pose
+  // (-1: never). It includes the map's own uncertainty, so the handrail
+  // does not take it below what the GP knew when the map was made.
   double position_sigma_m = -1.0;
   double position_sigma_held_min_m = -1.0;
-  // The same across the bar (the larger of the handrail map's wall-normal
-  // and sideways axes): the directions the handrail measures, whose sigma
-  // grows once it is lost, while along the bar the GP's fixes may shrink it
-  // (-1: no map).
+  // Relative to the handrail map, across the bar (the larger of its
+  // wall-normal and sideways axes): what the handrail measures, which grows
+  // once it is lost (-1: no map).
   double across_bar_sigma_m = -1.0;
   double across_bar_sigma_held_min_m = -1.0;
 };

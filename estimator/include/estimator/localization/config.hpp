@@ -108,6 +108,12 @@ struct LocalizationConfig {
   double map_consistency_rad = 0.05;
   double map_init_max_position_sigma_m = 0.25;
   int map_reset_after_rejections = 10;
+  // A map from sightings is uncertain by the robot's pose at the time
+  // (correlated with it, map_state.hpp) and by the detections' own error,
+  // these 1-sigma, per axis: the bar's position (across a few mm, along it
+  // the end's placement) and its attitude.
+  double map_sighting_position_sigma_m = 0.01;
+  double map_sighting_attitude_sigma_rad = 0.02;
   // The handrail holds the pose while an update was accepted this recently:
   // then a GP jump is rejected, never a relocalisation.
   double handrail_hold_s = 1.0;

@@ -6,7 +6,8 @@
 // Each feature j of frame i is a point measured in the camera frame, z_j,
 // with its position in the handrail frame ^H p_j (eq. 8, second line: from
 // the detected handrail pose; add_features() in measurements.hpp computes
-// it). The handrail's world pose comes from the map (handrail_map.hpp).
+// it). The handrail's world pose is the map's, held in the state
+// (state.hpp, map_state.hpp).
 //
 //   eq. 7   camera pose from the body pose and the mount:
 //           C_W = C_B R_BW,  ^G p_C = ^G p_B + R_WB ^B p_C    feature_context()
@@ -16,16 +17,15 @@
 //   eq. 10  H_dtheta = [z^_j x],  H_p = -R_CW                 feature_observation()
 //           mapped to the filter's error state by the chain rule of eq. 7
 //           (dtheta_C = R_CW dtheta, dp_C = dp - [R_WB ^B p_C x] dtheta):
-//           H = [-R_CW, 0, [z^_j x] R_CW + R_CW [R_WB ^B p_C x], 0, 0]
+//           H = [-R_CW, 0, [z^_j x] R_CW + R_CW [R_WB ^B p_C x], 0, 0,
+//                R_CW, -R_CW [R_WH ^H p_j x]]   (the last two: the map's error)
 //   eq. 11  NE: the feature in the handrail frame, z'_j = ^H p_j  feature_observation_no_end()
 //   eq. 12  r'_j = [I2 0] R_HC r_j                             feature_observation_no_end()
 //   eq. 13  H'_j = [I2 0] R_HC H_j, R_HC from the detection     feature_observation_no_end()
 //
 // With an end in view (BE, OE) every feature gives the 3-D residual of eq. 9
 // (noise sigma^2 I3); with no end (NE) the 2-D one of eq. 12 (sigma^2 I2: a
-// rotation of isotropic noise; sigma^2 is the feature's plus, for a surveyed
-// map, the survey's position variance and its attitude variance times the
-// squared lever arm |^H p_j|^2), the along-bar component dropped because the
+// rotation of isotropic noise), the along-bar component dropped because the
 // detection cannot place the bar along its axis. One improvement, on by
 // default (ne_reanchor_along_bar): before the NE residual the feature's
 // along-bar coordinate is replaced by the predicted one, so the dropped
@@ -78,8 +78,8 @@ void select_features(const HandrailMeasurement& m, int max_bar, int max_wall,
 // When the detection's axis, seen from the filter's pose, points against the
 // map's, turns the detection and its features' ^H p_j by pi about the wall
 // normal (flip_axis): the same bar, the map's axis sign.
-void align_with_map(const HandrailMap& map, const NominalState& x,
-                    const Eigen::Isometry3d& T_body_cam, SelectedFeatures* s);
+void align_with_map(const NominalState& x, const Eigen::Isometry3d& T_body_cam,
+                    SelectedFeatures* s);
 
 // What every feature of one update shares (eq. 7 and the map).
 struct FeatureContext {
@@ -89,8 +89,7 @@ struct FeatureContext {
   Eigen::Matrix3d R_world_handrail = Eigen::Matrix3d::Identity();
   Eigen::Vector3d p_world_handrail_m = Eigen::Vector3d::Zero();
 };
-FeatureContext feature_context(const HandrailMap& map, const NominalState& x,
-                               const Eigen::Isometry3d& T_body_cam);
+FeatureContext feature_context(const NominalState& x, const Eigen::Isometry3d& T_body_cam);
 
 // Eqs. 6, 8, 9, 10 for one feature (BE, OE).
 BlockObservation<3> feature_observation(const FeatureContext& c, const HandrailFeature& f,
@@ -104,7 +103,6 @@ BlockObservation<2> feature_observation_no_end(const FeatureContext& c, const Ha
 // The whole update at (x, P): per-feature gate, stacked Joseph update,
 // stacked gate. x and P are untouched unless the result is kAccepted.
 UpdateResult handrail_update(const LocalizationConfig& cfg, const ChiSquareGate& gate,
-                             const HandrailMap& map, const SelectedFeatures& s, NominalState* x,
-                             Covariance* P);
+                             const SelectedFeatures& s, NominalState* x, Covariance* P);
 
 }  // namespace estimator::localization

@@ -56,6 +56,10 @@ struct StoredMeasurement {
   std::uint32_t map_generation = 0;  // handrail: the map it was made against
   GpPose gp;
   SelectedFeatures handrail;
+  // Not a measurement: the map put into the state at t_us (map_state.hpp),
+  // surveyed or from sightings, re-done on every re-propagation across it.
+  bool map_attach = false;
+  HandrailMap map;
 };
 
 // Accepted measurements in (t_us, seq) order.

@@ -60,7 +60,10 @@
 //     dropped. A pose accepted or the handrail holding resets the count.
 //   Handrail. The map (handrail_map.hpp) is built from the first confident
 //     sightings (kMapSighting, kMapInitialized); an NE sighting before it
-//     exists is kNoMap. With a map, each measurement is an update
+//     exists is kNoMap. The map completed goes into the state with the
+//     robot's uncertainty at that time (map_state.hpp), an event stored
+//     with the updates so that a re-propagation across it does it again.
+//     With a map, each measurement is an update
 //     (handrail_update.hpp); map_reset_after_rejections gate rejections in a
 //     row drop the map (the handrail moved, or the map was wrong), and the
 //     next confident sightings build it again. A surveyed map
@@ -95,8 +98,14 @@ struct PoseEstimate {
   Eigen::Quaterniond q_world_body = Eigen::Quaterniond::Identity();
   Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();
-  PoseCovariance pose_cov = PoseCovariance::Zero();  // [position, attitude (world)]
+  // [position, attitude (world)]: with a map, the map's own uncertainty
+  // included (map_state.hpp).
+  PoseCovariance pose_cov = PoseCovariance::Zero();
   Eigen::Matrix3d velocity_cov = Eigen::Matrix3d::Zero();
+  // With a map: the body's position in the handrail's frame and its
+  // covariance there, what the handrail updates know (zero without a map).
+  Eigen::Vector3d p_handrail_body_m = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d handrail_position_cov = Eigen::Matrix3d::Zero();
 };
 
 class LocalizationFilter {
@@ -134,7 +143,10 @@ class LocalizationFilter {
   const NominalState& state() const;
   const Covariance& covariance() const;
   PoseEstimate estimate() const;
-  const HandrailMap& handrail_map() const { return map_.map(); }
+  // The map as the filter holds it now: valid and surveyed from the map,
+  // its pose from the state (which the updates move within its
+  // uncertainty).
+  HandrailMap handrail_map() const;
   const FilterCounters& counters() const { return counters_; }
   // NIS, dimension and features of the newest GP or handrail update tried.
   const UpdateResult& last_update() const { return last_; }
@@ -165,6 +177,11 @@ class LocalizationFilter {
   // the whole covariance as at the start (a diverged filter's are suspect).
   UpdateStatus relocalize_to(const GpPose& g, const Prior& pr, bool reset_dynamics);
   void drop_map();
+  // The survey, when one is set, into the newest state (after a drop).
+  void put_back_survey();
+  // The map into the state at pr's time, stored so that a re-propagation
+  // across that time does it again.
+  void attach_map_at(const Prior& pr, const HandrailMap& map);
   void raise_floor_past(std::int64_t t_us);
 
   LocalizationConfig cfg_;
