@@ -35,7 +35,9 @@ inline bool same(const Snapshot& a, const Snapshot& b) {
   return a.x.p_world_body_m == b.x.p_world_body_m && a.x.v_world_body_mps == b.x.v_world_body_mps &&
          a.x.q_world_body.coeffs() == b.x.q_world_body.coeffs() &&
          a.x.gyro_bias_radps == b.x.gyro_bias_radps && a.x.accel_bias_mps2 == b.x.accel_bias_mps2 &&
-         a.P == b.P && a.t_us == b.t_us && a.map_valid == b.map_valid;
+         a.x.p_world_handrail_m == b.x.p_world_handrail_m &&
+         a.x.q_world_handrail.coeffs() == b.x.q_world_handrail.coeffs() && a.P == b.P &&
+         a.t_us == b.t_us && a.map_valid == b.map_valid;
 }
 
 inline double rel_error(const LocalizationFilter& f, const Sim& sim, double t) {
