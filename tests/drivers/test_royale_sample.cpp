@@ -5,6 +5,7 @@
 // only the process that owns it (its handler reads and writes the host's
 // URBs in place). Its output must name the camera, its use cases and
 // lens, frames and a centre depth of 1 m; its exit status 0.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -153,6 +154,12 @@ void test_api_contract(void**) {
   assert_string_equal(royale::getStatusString(CameraStatus::USECASE_NOT_SUPPORTED).c_str(),
                       "USECASE_NOT_SUPPORTED");
   assert_int_equal(static_cast<int>(CameraStatus::DEVICE_NOT_INITIALIZED), 5004);
+  assert_int_equal(static_cast<long>(CameraStatus::UNKNOWN), 0x7fffff01L);
+  assert_string_equal(royale::getStatusString(CameraStatus::UNKNOWN).c_str(), "UNKNOWN");
+  assert_string_equal(royale::getStatusString(CameraStatus::FSM_INVALID_TRANSITION).c_str(),
+                      "FSM_INVALID_TRANSITION");
+  assert_string_equal(royale::getErrorString(CameraStatus::UNKNOWN).c_str(),
+                      "An error of no known kind.");
   royale::CameraManager manager;
   assert_null(manager.createCamera(g_rig->config.serial).get());  // not listed yet
   const royale::Vector<royale::String> ids = manager.getConnectedCameraList();
@@ -250,6 +257,75 @@ void test_api_contract(void**) {
   // callocs each submitted transfer's URB array (about 11 a MODE_9 frame
   // in 64 KB transfers): drivers_usb_camera_streaming checks that bound,
   // with the driver's transfer count.
+}
+
+// Keeps the capture time of every frame handed on.
+class StampListener final : public royale::IDepthDataListener {
+ public:
+  void onNewData(const royale::DepthData* data) override {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (stamps_us.size() < stamps_us.capacity()) stamps_us.push_back(data->timeStamp.count());
+  }
+  std::mutex mutex;
+  std::vector<long long> stamps_us;
+};
+
+// setFrameRate below the use case's own: the device hands on one frame per
+// 1/rate (the camera keeps its rate, the others are skipped); 0 and rates
+// above the use case's are refused; a new use case starts at its own rate.
+// Level 1 only: a level-2 call is refused for want of privileges.
+void test_frame_rate_and_access_level(void**) {
+  using royale::CameraStatus;
+  royale::CameraManager manager;
+  const royale::Vector<royale::String> ids = manager.getConnectedCameraList();
+  assert_int_equal(ids.size(), 1);
+  std::unique_ptr<royale::ICameraDevice> device = manager.createCamera(ids[0]);
+  assert_non_null(device.get());
+  assert_int_equal(device->setFrameRate(4), CameraStatus::DEVICE_NOT_INITIALIZED);
+  assert_int_equal(device->initialize(), CameraStatus::SUCCESS);
+  royale::CameraAccessLevel level = royale::CameraAccessLevel::L4;
+  assert_int_equal(device->getAccessLevel(level), CameraStatus::SUCCESS);
+  assert_true(level == royale::CameraAccessLevel::L1);
+  assert_int_equal(device->setExposureTimes(royale::Vector<uint32_t>::fromStdVector({500})),
+                   CameraStatus::INSUFFICIENT_PRIVILEGES);
+  assert_int_equal(device->setUseCase("MODE_9_10FPS_1000"), CameraStatus::SUCCESS);
+  uint16_t rate = 0;
+  assert_int_equal(device->getMaxFrameRate(rate), CameraStatus::SUCCESS);
+  assert_int_equal(rate, 10);
+  assert_int_equal(device->getFrameRate(rate), CameraStatus::SUCCESS);
+  assert_int_equal(rate, 10);
+  assert_int_equal(device->setFrameRate(0), CameraStatus::FRAMERATE_NOT_SUPPORTED);
+  assert_int_equal(device->setFrameRate(11), CameraStatus::FRAMERATE_NOT_SUPPORTED);
+  assert_int_equal(device->setFrameRate(4), CameraStatus::SUCCESS);
+  assert_int_equal(device->getFrameRate(rate), CameraStatus::SUCCESS);
+  assert_int_equal(rate, 4);
+  StampListener listener;
+  listener.stamps_us.reserve(200);
+  assert_int_equal(device->registerDataListener(&listener), CameraStatus::SUCCESS);
+  assert_int_equal(device->startCapture(), CameraStatus::SUCCESS);
+  std::this_thread::sleep_for(std::chrono::milliseconds(3000));
+  assert_int_equal(device->stopCapture(), CameraStatus::SUCCESS);
+  std::vector<long long> stamps;
+  {
+    std::lock_guard<std::mutex> lock(listener.mutex);
+    stamps = listener.stamps_us;
+  }
+  assert_true(stamps.size() >= 3);
+  long long min_gap_us = 1LL << 40;
+  for (std::size_t i = 1; i < stamps.size(); ++i) {
+    min_gap_us = std::min(min_gap_us, stamps[i] - stamps[i - 1]);
+  }
+  const double rate_hz = 1e6 * static_cast<double>(stamps.size() - 1) /
+                         static_cast<double>(stamps.back() - stamps.front());
+  std::printf(
+      "setFrameRate(4) on MODE_9_10FPS_1000: %zu frames in 3 s, %.2f per second between the "
+      "first and last, closest two %.0f ms apart\n",
+      stamps.size(), rate_hz, 1e-3 * static_cast<double>(min_gap_us));
+  assert_true(rate_hz > 3.5 && rate_hz < 4.5);
+  assert_true(min_gap_us >= 180000);  // the camera's 100 ms frames, every second or third
+  assert_int_equal(device->setUseCase("MODE_9_5FPS_2000"), CameraStatus::SUCCESS);
+  assert_int_equal(device->getFrameRate(rate), CameraStatus::SUCCESS);
+  assert_int_equal(rate, 5);
 }
 
 bool wait_for_flag(const std::atomic<bool>& flag, int timeout_ms) {
@@ -359,6 +435,7 @@ int main(int, char** argv) {
   sim_hal::umockdev_preload::ensure(argv);
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_sample_against_the_emulated_camera),
                                      cmocka_unit_test(test_api_contract),
+                                     cmocka_unit_test(test_frame_rate_and_access_level),
                                      cmocka_unit_test(test_events_from_the_driver)};
   return cmocka_run_group_tests(tests, set_up, tear_down);
 }

@@ -1,6 +1,7 @@
 #pragma once
 // royale's umbrella header: the royale C++ API on the project's Pico Flexx
 // driver (drivers/pico_flexx/README.md, "royale", says which part).
+#include "royale/CameraAccessLevel.hpp"
 #include "royale/CameraManager.hpp"
 #include "royale/Definitions.hpp"
 #include "royale/DepthData.hpp"

@@ -85,7 +85,14 @@ royale::CameraStatus PicoFlexxDevice::getCameraName(royale::String& cameraName) 
 
 royale::CameraStatus PicoFlexxDevice::setUseCase(const royale::String& name) {
   if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
-  return from_hal(camera_.set_use_case(name.c_str()));
+  const hal::CameraStatus s = camera_.set_use_case(name.c_str());
+  if (s == hal::CameraStatus::kSuccess) {
+    // A new use case runs at its own rate.
+    std::lock_guard<std::mutex> lock(listener_mutex_);
+    set_rate_hz_ = 0;
+    next_due_us_ = -1;
+  }
+  return from_hal(s);
 }
 
 royale::CameraStatus PicoFlexxDevice::getUseCases(royale::Vector<royale::String>& useCases) const {
@@ -137,12 +144,37 @@ royale::CameraStatus PicoFlexxDevice::getCurrentUseCase(royale::String& useCase)
   return royale::CameraStatus::SUCCESS;
 }
 
+royale::CameraStatus PicoFlexxDevice::setFrameRate(uint16_t framerate) {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  const hal::UseCase* current = nullptr;
+  const hal::CameraStatus s = camera_.current_use_case(&current);
+  if (s != hal::CameraStatus::kSuccess) return from_hal(s);
+  if (framerate == 0 || framerate > current->frame_rate_hz) {
+    return royale::CameraStatus::FRAMERATE_NOT_SUPPORTED;
+  }
+  std::lock_guard<std::mutex> lock(listener_mutex_);
+  set_rate_hz_ = framerate == current->frame_rate_hz ? 0 : framerate;
+  camera_rate_hz_ = static_cast<uint16_t>(current->frame_rate_hz);
+  next_due_us_ = -1;
+  return royale::CameraStatus::SUCCESS;
+}
+
 royale::CameraStatus PicoFlexxDevice::getFrameRate(uint16_t& frameRate) const {
   if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
   const hal::UseCase* current = nullptr;
   const hal::CameraStatus s = camera_.current_use_case(&current);
   if (s != hal::CameraStatus::kSuccess) return from_hal(s);
-  frameRate = current->frame_rate_hz;
+  std::lock_guard<std::mutex> lock(listener_mutex_);
+  frameRate = set_rate_hz_ != 0 ? set_rate_hz_ : static_cast<uint16_t>(current->frame_rate_hz);
+  return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::getMaxFrameRate(uint16_t& maxFrameRate) const {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  const hal::UseCase* current = nullptr;
+  const hal::CameraStatus s = camera_.current_use_case(&current);
+  if (s != hal::CameraStatus::kSuccess) return from_hal(s);
+  maxFrameRate = static_cast<uint16_t>(current->frame_rate_hz);
   return royale::CameraStatus::SUCCESS;
 }
 
@@ -184,6 +216,12 @@ royale::CameraStatus PicoFlexxDevice::getExposureLimits(
   // PROTOCOL.md, SET_EXPOSURE_TIME: 1 us .. the use case's longest.
   exposureLimits = {1u, current->max_exposure_us};
   return royale::CameraStatus::SUCCESS;
+}
+
+royale::CameraStatus PicoFlexxDevice::setExposureTimes(const royale::Vector<uint32_t>&,
+                                                       royale::StreamId) {
+  if (!initialized_) return royale::CameraStatus::DEVICE_NOT_INITIALIZED;
+  return royale::CameraStatus::INSUFFICIENT_PRIVILEGES;  // level 2
 }
 
 royale::CameraStatus PicoFlexxDevice::registerDataListener(royale::IDepthDataListener* listener) {
@@ -364,9 +402,27 @@ royale::CameraStatus PicoFlexxDevice::isCapturing(bool& capturing) const {
   return royale::CameraStatus::SUCCESS;
 }
 
+royale::CameraStatus PicoFlexxDevice::getAccessLevel(royale::CameraAccessLevel& accessLevel) const {
+  accessLevel = royale::CameraAccessLevel::L1;
+  return royale::CameraStatus::SUCCESS;
+}
+
+bool PicoFlexxDevice::due_at_set_rate(std::int64_t capture_us) {
+  if (set_rate_hz_ == 0 || camera_rate_hz_ == 0) return true;
+  const std::int64_t period_us = 1000000 / set_rate_hz_;
+  const std::int64_t slack_us = 500000 / camera_rate_hz_;
+  if (next_due_us_ >= 0 && capture_us < next_due_us_ - slack_us) return false;
+  // On the rate's own grid, so that the skipped frames do not slow it; a
+  // gap (frames lost, capture restarted) starts the grid again.
+  const bool on_grid = next_due_us_ >= 0 && capture_us <= next_due_us_ + period_us;
+  next_due_us_ = (on_grid ? next_due_us_ : capture_us) + period_us;
+  return true;
+}
+
 void PicoFlexxDevice::on_new_data(const hal::DepthFrame& frame) {
   std::lock_guard<std::mutex> lock(listener_mutex_);
   if (listener_ == nullptr) return;
+  if (!due_at_set_rate(frame.capture_time_us)) return;
   const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
   if (n > data_.points.capacity()) return;  // cannot happen: the sensor's size
   // Within the capacities reserved at initialize(): no allocation.

@@ -35,7 +35,9 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
   royale::CameraStatus getStreams(royale::Vector<royale::StreamId>& streams) const override;
   royale::CameraStatus getNumberOfStreams(const royale::String& name,
                                           uint32_t& nrStreams) const override;
+  royale::CameraStatus setFrameRate(uint16_t framerate) override;
   royale::CameraStatus getFrameRate(uint16_t& frameRate) const override;
+  royale::CameraStatus getMaxFrameRate(uint16_t& maxFrameRate) const override;
   royale::CameraStatus setExposureTime(uint32_t exposureTime, royale::StreamId streamId) override;
   royale::CameraStatus setExposureMode(royale::ExposureMode exposureMode,
                                        royale::StreamId streamId) override;
@@ -43,6 +45,8 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
                                        royale::StreamId streamId) const override;
   royale::CameraStatus getExposureLimits(royale::Pair<uint32_t, uint32_t>& exposureLimits,
                                          royale::StreamId streamId) const override;
+  royale::CameraStatus setExposureTimes(const royale::Vector<uint32_t>& exposureTimes,
+                                        royale::StreamId streamId) override;
   royale::CameraStatus registerDataListener(royale::IDepthDataListener* listener) override;
   royale::CameraStatus unregisterDataListener() override;
   royale::CameraStatus registerEventListener(royale::IEventListener* listener) override;
@@ -55,10 +59,15 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
   royale::CameraStatus isConnected(bool& connected) const override;
   royale::CameraStatus isCalibrated(bool& calibrated) const override;
   royale::CameraStatus isCapturing(bool& capturing) const override;
+  royale::CameraStatus getAccessLevel(royale::CameraAccessLevel& accessLevel) const override;
 
  private:
   // The driver's frame, on its event thread.
   void on_new_data(const hal::DepthFrame& frame) override;
+  // Whether a frame captured then falls due at the rate set (under
+  // listener_mutex_): one each 1/rate, within half the camera's own frame
+  // period; after a gap longer than that the count starts again.
+  bool due_at_set_rate(std::int64_t capture_us);
   // The event thread's loop: every 100 ms, the camera's state (a lost
   // camera is reported once), and each second of capture the USB stream's
   // frames delivered and dropped since the last report.
@@ -71,8 +80,13 @@ class PicoFlexxDevice final : public ICameraDevice, private hal::DepthDataListen
   royale::String id_;
   bool initialized_ = false;
   royale::ExposureMode exposure_mode_ = royale::ExposureMode::MANUAL;
-  std::mutex listener_mutex_;  // a listener unregistered is not called again
+  mutable std::mutex listener_mutex_;  // a listener unregistered is not called again
   royale::IDepthDataListener* listener_ = nullptr;
+  // setFrameRate's rate (0: the use case's own), the camera's, and when the
+  // next frame falls due (-1: the next frame). Under listener_mutex_.
+  uint16_t set_rate_hz_ = 0;
+  uint16_t camera_rate_hz_ = 0;
+  std::int64_t next_due_us_ = -1;
   royale::DepthData data_{};
   pico_flexx::UsbDepthCamera camera_;
   // Events: the listener, and the thread that finds what to report

@@ -69,6 +69,18 @@ royale::String getErrorString(royale::CameraStatus status) {
       return "The camera holds no calibration.";
     case CameraStatus::INSUFFICIENT_BANDWIDTH:
       return "The USB link is too slow for the use case.";
+    case CameraStatus::DUTYCYCLE_NOT_SUPPORTED:
+      return "The illumination's duty cycle cannot be set to that.";
+    case CameraStatus::SPECTRE_NOT_INITIALIZED:
+      return "The vendor's processing was not set up.";
+    case CameraStatus::NO_USE_CASES:
+      return "The camera offers no use case.";
+    case CameraStatus::NO_USE_CASES_FOR_LEVEL:
+      return "The camera offers no use case at this access level.";
+    case CameraStatus::FSM_INVALID_TRANSITION:
+      return "The camera's state machine does not allow this step now.";
+    case CameraStatus::UNKNOWN:
+      return "An error of no known kind.";
   }
   return "An unknown status.";
 }

@@ -4,6 +4,7 @@
 // a CameraStatus.
 #include <cstdint>
 
+#include "royale/CameraAccessLevel.hpp"
 #include "royale/Definitions.hpp"
 #include "royale/ExposureMode.hpp"
 #include "royale/IDepthDataListener.hpp"
@@ -36,7 +37,13 @@ class ICameraDevice {
   virtual royale::CameraStatus getStreams(royale::Vector<royale::StreamId>& streams) const = 0;
   virtual royale::CameraStatus getNumberOfStreams(const royale::String& name,
                                                   uint32_t& nrStreams) const = 0;
+  // The frame rate: the use case's own (getMaxFrameRate) unless set lower,
+  // 1 up to it, for the current use case (a new use case starts at its
+  // own). The camera keeps its use case's rate; the device hands on the
+  // frames that fall due at the rate set and skips the others.
+  virtual royale::CameraStatus setFrameRate(uint16_t framerate) = 0;
   virtual royale::CameraStatus getFrameRate(uint16_t& frameRate) const = 0;
+  virtual royale::CameraStatus getMaxFrameRate(uint16_t& maxFrameRate) const = 0;
 
   virtual royale::CameraStatus setExposureTime(uint32_t exposureTime,
                                                royale::StreamId streamId = 0) = 0;
@@ -46,6 +53,9 @@ class ICameraDevice {
                                                royale::StreamId streamId = 0) const = 0;
   virtual royale::CameraStatus getExposureLimits(royale::Pair<uint32_t, uint32_t>& exposureLimits,
                                                  royale::StreamId streamId = 0) const = 0;
+  // Level 2 (exposure times per sequence): INSUFFICIENT_PRIVILEGES here.
+  virtual royale::CameraStatus setExposureTimes(const royale::Vector<uint32_t>& exposureTimes,
+                                                royale::StreamId streamId = 0) = 0;
 
   virtual royale::CameraStatus registerDataListener(royale::IDepthDataListener* listener) = 0;
   virtual royale::CameraStatus unregisterDataListener() = 0;
@@ -65,6 +75,8 @@ class ICameraDevice {
   virtual royale::CameraStatus isConnected(bool& connected) const = 0;
   virtual royale::CameraStatus isCalibrated(bool& calibrated) const = 0;
   virtual royale::CameraStatus isCapturing(bool& capturing) const = 0;
+  // L1 (CameraAccessLevel.hpp).
+  virtual royale::CameraStatus getAccessLevel(royale::CameraAccessLevel& accessLevel) const = 0;
 };
 
 }  // namespace royale

@@ -36,9 +36,18 @@ enum class CameraStatus {
   EXPOSURE_MODE_INVALID = detail::status_value(hal::CameraStatus::kExposureModeInvalid),
   NO_CALIBRATION_DATA = detail::status_value(hal::CameraStatus::kNoCalibrationData),
   INSUFFICIENT_BANDWIDTH = detail::status_value(hal::CameraStatus::kInsufficientBandwidth),
+  // royale's, which no call here returns (hal has no such cases); kept so
+  // that an application's switch over royale's statuses compiles.
+  DUTYCYCLE_NOT_SUPPORTED = 5011,
+  SPECTRE_NOT_INITIALIZED = 5012,
+  NO_USE_CASES = 5013,
+  NO_USE_CASES_FOR_LEVEL = 5014,
+  FSM_INVALID_TRANSITION = 8096,
+  UNKNOWN = 0x7fffff01,  // the catch-all
 };
 
-// The status's name, as hal::to_string gives it ("USECASE_NOT_SUPPORTED").
+// The status's name ("USECASE_NOT_SUPPORTED"): hal::to_string's for the
+// codes hal has, royale's own name for the others.
 royale::String getStatusString(royale::CameraStatus status);
 
 }  // namespace royale
