@@ -9,6 +9,8 @@
 //   1 cm off for 3 frames          -> taken, the error bounded (under 15 mm)
 //                                     and gone 2 s later;
 //   ten of them in a row           -> the map is dropped and built again;
+//   no end seen before a map       -> a line map, for NE updates; replaced
+//                                     by a map with ends once they are seen;
 //   NaN, infinity or malformed input of any kind -> rejected, counted, the
 //                                     state untouched (bit for bit);
 //   too old, from the future, bad configuration -> their statuses.
@@ -258,15 +260,54 @@ void test_persistent_offset_drops_and_rebuilds_the_map(void**) {
   assert_true(c.f->handrail_map().valid);
 }
 
-void test_no_end_before_a_map_is_no_map(void**) {
+// No end seen before there is a map: the sightings build a line map (its
+// origin somewhere on the bar), which NE updates can use from then on; the
+// first sighting only counts, the state untouched. Sightings with an end
+// then count toward a map placed along the bar, each used as NE against the
+// line meanwhile, and replace the line map when complete.
+void test_no_end_sightings_build_a_line_map(void**) {
   Converged c(5.0);
   c.f->reset_handrail_map();
-  auto m = std::make_unique<HandrailMeasurement>();
-  assert_true(c.sim->detect(c.now_s() - 0.05, m.get()));
-  m->state = HandrailState::kNoEnd;
+  const auto sighting = [&](double dt_s, HandrailState state) {
+    auto m = std::make_unique<HandrailMeasurement>();
+    assert_true(c.sim->detect(c.now_s() - dt_s, m.get()));
+    if (state == HandrailState::kNoEnd) {
+      // The detector cannot place an NE frame along the bar: its origin
+      // slides with the part in view.
+      m->T_cam_handrail = m->T_cam_handrail * Eigen::Translation3d(0.0, 0.0, 0.04 * dt_s / 0.01);
+      for (int k = 0; k < m->num_features; ++k) {
+        m->features[static_cast<std::size_t>(k)].p_handrail_m.z() -= 0.04 * dt_s / 0.01;
+      }
+    }
+    m->state = state;
+    return c.f->add_handrail(*m);
+  };
   const Snapshot before = snap(*c.f);
-  assert_int_equal(static_cast<int>(c.f->add_handrail(*m)), static_cast<int>(UpdateStatus::kNoMap));
+  assert_int_equal(static_cast<int>(sighting(0.05, HandrailState::kNoEnd)),
+                   static_cast<int>(UpdateStatus::kMapSighting));
   assert_true(same(before, snap(*c.f)));
+  assert_int_equal(static_cast<int>(sighting(0.04, HandrailState::kNoEnd)),
+                   static_cast<int>(UpdateStatus::kMapSighting));
+  assert_int_equal(static_cast<int>(sighting(0.03, HandrailState::kNoEnd)),
+                   static_cast<int>(UpdateStatus::kMapInitialized));
+  assert_true(c.f->handrail_map().valid);
+  assert_false(c.f->handrail_map().along_known);
+  assert_int_equal(static_cast<int>(sighting(0.02, HandrailState::kNoEnd)),
+                   static_cast<int>(UpdateStatus::kAccepted));
+  // Ends seen: used as NE while they count, then the map with ends.
+  assert_int_equal(static_cast<int>(sighting(0.015, HandrailState::kBothEnds)),
+                   static_cast<int>(UpdateStatus::kAccepted));
+  assert_int_equal(static_cast<int>(sighting(0.01, HandrailState::kBothEnds)),
+                   static_cast<int>(UpdateStatus::kAccepted));
+  assert_false(c.f->handrail_map().along_known);
+  assert_int_equal(static_cast<int>(sighting(0.005, HandrailState::kBothEnds)),
+                   static_cast<int>(UpdateStatus::kMapInitialized));
+  assert_true(c.f->handrail_map().valid && c.f->handrail_map().along_known);
+  assert_int_equal(c.f->counters().map_line_replaced, 1);
+  assert_int_equal(static_cast<int>(sighting(0.0, HandrailState::kBothEnds)),
+                   static_cast<int>(UpdateStatus::kAccepted));
+  assert_int_equal(c.bad_health, 0);
+  assert_true(c.f->check() == Health::kOk);
 }
 // ------------------------------------------------------------- bad input
 
@@ -457,7 +498,7 @@ int main() {
       cmocka_unit_test(test_handrail_measurement_5cm_off_is_rejected),
       cmocka_unit_test(test_detection_biased_1cm_for_three_frames),
       cmocka_unit_test(test_persistent_offset_drops_and_rebuilds_the_map),
-      cmocka_unit_test(test_no_end_before_a_map_is_no_map),
+      cmocka_unit_test(test_no_end_sightings_build_a_line_map),
       cmocka_unit_test(test_non_finite_and_malformed_input_is_rejected_untouched),
       cmocka_unit_test(test_too_old_and_future_measurements),
       cmocka_unit_test(test_before_initialisation),

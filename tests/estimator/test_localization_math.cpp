@@ -580,26 +580,66 @@ void test_handrail_map_builder(void**) {
   bool restarted = false;
   Eigen::Isometry3d T1 = T;
   T1.translation().y() += 0.004;
-  assert_true(b.add_sighting(cfg, T1, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(b.add_sighting(cfg, T1, true, &restarted) == UpdateStatus::kMapSighting);
   // The same bar with its axis reversed counts as the same sighting.
   Eigen::Isometry3d T2 = T;
   T2.linear() = flip_axis(T.linear());
   T2.translation().y() -= 0.004;
-  assert_true(b.add_sighting(cfg, T2, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(b.add_sighting(cfg, T2, true, &restarted) == UpdateStatus::kMapSighting);
   assert_false(restarted);
   // One far off restarts the count from itself.
   Eigen::Isometry3d T3 = T;
   T3.translation().z() += 0.1;
-  assert_true(b.add_sighting(cfg, T3, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(b.add_sighting(cfg, T3, true, &restarted) == UpdateStatus::kMapSighting);
   assert_true(restarted);
   assert_int_equal(b.sightings(), 1);
-  assert_true(b.add_sighting(cfg, T3, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(b.add_sighting(cfg, T3, true, &restarted) == UpdateStatus::kMapSighting);
   const Eigen::Isometry3d T4 = T3 * Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY());
-  assert_true(b.add_sighting(cfg, T4, &restarted) == UpdateStatus::kMapInitialized);
+  assert_true(b.add_sighting(cfg, T4, true, &restarted) == UpdateStatus::kMapInitialized);
   assert_true(b.map().valid);
   assert_true((b.map().T_world_handrail.translation() - T3.translation()).norm() < 1e-12);
   const double angle = Eigen::AngleAxisd(b.map().T_world_handrail.linear()).angle();
   assert_near(angle, 0.01 / 3.0, 1e-6);
+  assert_true(b.map().along_known);
+
+  // No end seen: a line map. Origins 20 and 35 cm along the bar agree (they
+  // only slide along it); the map keeps the first one's. One 4 cm across
+  // restarts the count. During a count with ends, a sighting without one
+  // is refused; an end seen during a line count restarts it with ends.
+  HandrailMapBuilder line;
+  Eigen::Isometry3d L1 = T;
+  L1.translation().z() += 0.20;
+  Eigen::Isometry3d L2 = T;
+  L2.translation().z() += 0.35;
+  L2.translation().y() += 0.003;
+  Eigen::Isometry3d L3 = T;
+  L3.translation().y() += 0.04;
+  assert_true(line.add_sighting(cfg, L1, false, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(line.add_sighting(cfg, L2, false, &restarted) == UpdateStatus::kMapSighting);
+  assert_false(restarted);
+  assert_true(line.add_sighting(cfg, L3, false, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(restarted);
+  Eigen::Isometry3d L4 = L3;
+  L4.translation().z() += 0.10;
+  Eigen::Isometry3d L5 = L3;
+  L5.translation().z() -= 0.05;
+  L5.translation().y() += 0.003;
+  assert_true(line.add_sighting(cfg, L4, false, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(line.add_sighting(cfg, L5, false, &restarted) == UpdateStatus::kMapInitialized);
+  assert_true(line.map().valid);
+  assert_false(line.map().along_known);
+  // L3 started the count: the origin is L3's along the bar, the mean across.
+  const Eigen::Vector3d origin = line.map().T_world_handrail.translation();
+  assert_near(origin.z(), L3.translation().z(), 1e-12);
+  assert_near(origin.y(), L3.translation().y() + 0.001, 1e-12);
+  HandrailMapBuilder ends;
+  assert_true(ends.add_sighting(cfg, T, true, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(ends.add_sighting(cfg, L1, false, &restarted) == UpdateStatus::kNoMap);
+  assert_int_equal(ends.sightings(), 1);
+  HandrailMapBuilder upgraded;
+  assert_true(upgraded.add_sighting(cfg, L1, false, &restarted) == UpdateStatus::kMapSighting);
+  assert_true(upgraded.add_sighting(cfg, T, true, &restarted) == UpdateStatus::kMapSighting);
+  assert_int_equal(upgraded.sightings(), 1);
 }
 
 // ------------------------------------------------------------- the rest

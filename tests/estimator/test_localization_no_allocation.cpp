@@ -2,10 +2,10 @@
 // operator new and (outside AddressSanitizer) every malloc on the test's
 // thread is counted while armed, over thousands of IMU samples and hundreds
 // of GP and handrail updates down every path: initialisation, late updates
-// with re-propagation, the map built from sightings, BE, OE and NE updates,
-// a bridged IMU gap and a lost one, gate rejections, a GP jump and its
-// relocalisation, and non-finite input. The simulated world is built before
-// counting starts.
+// with re-propagation, the map built from sightings (and a line map from
+// sightings with no end), BE, OE and NE updates, a bridged IMU gap and a
+// lost one, gate rejections, a GP jump and its relocalisation, and
+// non-finite input. The simulated world is built before counting starts.
 #include <limits>
 #include <memory>
 #include <vector>
@@ -56,6 +56,7 @@ void test_no_allocation_over_thousands_of_steps(void**) {
   auto fa = std::make_unique<LocalizationFilter>(locsim::sim_filter_config(a));
   auto fb = std::make_unique<LocalizationFilter>(locsim::sim_filter_config(b));
   const int gap1 = locsim::sample_at(sim_a, 8.0), gap2 = locsim::sample_at(sim_a, 30.0);
+  const int forget_map = locsim::sample_at(sim_a, 22.0);  // then NE only: a line map
   ImuSample nan_imu;
   nan_imu.a_body_mps2.x() = std::numeric_limits<double>::infinity();
 
@@ -66,6 +67,7 @@ void test_no_allocation_over_thousands_of_steps(void**) {
       [&](int k, double) {
         ++steps;
         healthy += fa->check() == Health::kOk;
+        if (k == forget_map) fa->reset_handrail_map();
         if (k == gap1 + 100) {
           bad->capture_time_us = fa->time_us() - 50000;
           fa->add_handrail(*bad);
@@ -98,6 +100,7 @@ void test_no_allocation_over_thousands_of_steps(void**) {
   assert_true(ca.count(MeasurementKind::kHandrailEnds, UpdateStatus::kMapInitialized) >= 1);
   assert_true(ca.count(MeasurementKind::kHandrailEnds, UpdateStatus::kAccepted) > 50);
   assert_true(ca.count(MeasurementKind::kHandrailNoEnd, UpdateStatus::kAccepted) > 50);
+  assert_true(ca.count(MeasurementKind::kHandrailNoEnd, UpdateStatus::kMapInitialized) >= 1);
   assert_true(ca.count(MeasurementKind::kHandrailEnds, UpdateStatus::kRejectedGate) >= 1);
   assert_true(ca.count(MeasurementKind::kHandrailEnds, UpdateStatus::kRejectedNotFinite) == 1);
   assert_true(ca.count(MeasurementKind::kGpPose, UpdateStatus::kAccepted) > 20);

@@ -245,19 +245,23 @@ void test_one_end_of_a_longer_bar_keeps_the_pose(void**) {
 }
 
 // Only the top end in view from the start: no length is known, so the OE
-// estimates are used as NE (the along-bar position is not claimed). The map
-// is built only from sightings with an end placed, so none is built.
+// estimates are used as NE (the along-bar position is not claimed). They
+// build a line map (its origin somewhere on the bar), and from then on they
+// are NE updates: across the bar the handrail holds the pose from the
+// first frames.
 void test_one_end_with_no_length_known_is_used_as_no_end(void**) {
   Rig r(9);
   r.bar_length_m = 0.76;
   r.one_end = true;
   r.run(8.0);
   const fsw_app::LocalizerReport rep = fsw_app::localizer_report(r.task);
-  std::printf("top end only from the start: %u with an end, %u as NE, map %s\n",
+  std::printf("top end only from the start: %u with an end, %u as NE, map %s, %u sightings\n",
               rep.handrail_accepted, rep.handrail_no_end_accepted,
-              rep.map_valid ? "valid" : "not built");
-  assert_int_equal(rep.handrail_map_sightings, 0);
-  assert_false(rep.map_valid);
+              rep.map_valid ? "valid" : "not built", rep.handrail_map_sightings);
+  assert_true(rep.map_valid);
+  assert_false(r.task.filter().handrail_map().along_known);
+  assert_true(rep.handrail_no_end_accepted > 20);
+  assert_int_equal(rep.handrail_accepted, 0);
 }
 
 // The handrail lost mid-approach: the filter goes on with the GP, its

@@ -37,9 +37,11 @@ void HandrailMapBuilder::reset() {
   *this = HandrailMapBuilder();
 }
 
-void HandrailMapBuilder::start(const Eigen::Isometry3d& T) {
+void HandrailMapBuilder::start(const Eigen::Isometry3d& T, bool along_known) {
   const Eigen::Quaterniond q(T.linear());
   count_ = 1;
+  counting_along_known_ = along_known;
+  first_p_ = T.translation();
   sum_p_ = T.translation();
   sum_q_ = q.coeffs();
   mean_p_ = sum_p_;
@@ -48,12 +50,15 @@ void HandrailMapBuilder::start(const Eigen::Isometry3d& T) {
 
 UpdateStatus HandrailMapBuilder::add_sighting(const LocalizationConfig& cfg,
                                               const Eigen::Isometry3d& T_world_handrail,
-                                              bool* restarted) {
+                                              bool along_known, bool* restarted) {
   *restarted = false;
   if (map_.valid) return UpdateStatus::kMapInitialized;
+  if (count_ > 0 && counting_along_known_ && !along_known) return UpdateStatus::kNoMap;
   Eigen::Isometry3d T = T_world_handrail;
-  if (count_ == 0) {
-    start(T);
+  if (count_ > 0 && !counting_along_known_ && along_known) {
+    start(T, true);  // an end seen: a map placed along the bar, not a line
+  } else if (count_ == 0) {
+    start(T, along_known);
   } else {
     // The same bar with its axis reversed is the same sighting.
     if (T.linear().col(2).dot(mean_q_.toRotationMatrix().col(2)) < 0.0) {
@@ -61,10 +66,19 @@ UpdateStatus HandrailMapBuilder::add_sighting(const LocalizationConfig& cfg,
     }
     Eigen::Quaterniond q(T.linear());
     if (q.coeffs().dot(mean_q_.coeffs()) < 0.0) q.coeffs() = -q.coeffs();
-    const bool agrees = (T.translation() - mean_p_).norm() <= cfg.map_consistency_m &&
+    // No end seen: the origin is only somewhere on the bar. Slid along the
+    // mean axis onto the plane across the first origin, so that the test
+    // and the mean are across the bar only (a restart keeps its own).
+    Eigen::Vector3d p = T.translation();
+    if (!along_known) {
+      const Eigen::Vector3d axis = mean_q_ * Eigen::Vector3d::UnitZ();
+      p -= axis * axis.dot(p - first_p_);
+    }
+    const bool agrees = (p - mean_p_).norm() <= cfg.map_consistency_m &&
                         q.angularDistance(mean_q_) <= cfg.map_consistency_rad;
+    T.translation() = p;
     if (!agrees) {
-      start(T);
+      start(T_world_handrail, along_known);
       *restarted = true;
     } else {
       ++count_;
@@ -78,6 +92,7 @@ UpdateStatus HandrailMapBuilder::add_sighting(const LocalizationConfig& cfg,
   }
   if (count_ < cfg.map_init_sightings) return UpdateStatus::kMapSighting;
   map_.valid = true;
+  map_.along_known = counting_along_known_;
   map_.T_world_handrail.setIdentity();
   map_.T_world_handrail.linear() = mean_q_.toRotationMatrix();
   map_.T_world_handrail.translation() = mean_p_;

@@ -51,6 +51,7 @@ void LocalizationFilter::reset() {
   history_.clear();
   store_.clear();
   map_.reset();
+  ends_map_.reset();
   if (survey_.valid) map_.set_survey(survey_);
   ++map_generation_;
   last_ = UpdateResult{};
@@ -82,6 +83,7 @@ void LocalizationFilter::clear_handrail_survey() {
 
 void LocalizationFilter::drop_map() {
   map_.reset();
+  ends_map_.reset();
   if (survey_.valid) map_.set_survey(survey_);
   // Stored handrail updates made against the old map are skipped on a
   // re-propagation from now on.
@@ -504,16 +506,45 @@ UpdateStatus LocalizationFilter::add_handrail(const HandrailMeasurement& m) {
     return st;
   }
 
+  const bool end_seen = m.state != HandrailState::kNoEnd;
+  // T_world_handrail of this sighting, from the pose at its capture.
+  const auto sighting_in_world = [&]() {
+    Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
+    T_world_body.linear() = pr.x.q_world_body.toRotationMatrix();
+    T_world_body.translation() = pr.x.p_world_body_m;
+    return Eigen::Isometry3d(T_world_body * cfg_.T_body_cam * m.T_cam_handrail);
+  };
+  // With a line map (built with no end seen), sightings with an end count
+  // toward a map placed along the bar, which replaces it when complete;
+  // meanwhile each is used as NE against the line map.
+  bool as_no_end = false;
+  const double position_sigma_m = std::sqrt(pr.P.block<3, 3>(kPos, kPos).diagonal().maxCoeff());
+  const bool pose_good_enough = position_sigma_m <= cfg_.map_init_max_position_sigma_m;
+  if (map_.map().valid && !map_.map().along_known && end_seen) as_no_end = true;
+  if (as_no_end && pose_good_enough) {
+    bool restarted = false;
+    const UpdateStatus pending =
+        ends_map_.add_sighting(cfg_, sighting_in_world(), true, &restarted);
+    if (restarted) ++counters_.map_restarts;
+    if (pending == UpdateStatus::kMapInitialized) {
+      map_ = ends_map_;
+      ends_map_.reset();
+      ++map_generation_;
+      ++counters_.map_line_replaced;
+      have_handrail_accept_ = false;
+      handrail_rejections_in_row_ = 0;
+      attach_map_at(pr, map_.map());
+      last_.status = pending;
+      counters_.note(kind, pending);
+      return pending;
+    }
+  }
   if (!map_.map().valid) {
-    const double position_sigma_m = std::sqrt(pr.P.block<3, 3>(kPos, kPos).diagonal().maxCoeff());
-    if (m.state == HandrailState::kNoEnd || position_sigma_m > cfg_.map_init_max_position_sigma_m) {
+    if (!pose_good_enough) {
       st = UpdateStatus::kNoMap;
     } else {
-      Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
-      T_world_body.linear() = pr.x.q_world_body.toRotationMatrix();
-      T_world_body.translation() = pr.x.p_world_body_m;
       bool restarted = false;
-      st = map_.add_sighting(cfg_, T_world_body * cfg_.T_body_cam * m.T_cam_handrail, &restarted);
+      st = map_.add_sighting(cfg_, sighting_in_world(), end_seen, &restarted);
       if (restarted) ++counters_.map_restarts;
       if (st == UpdateStatus::kMapInitialized) {
         ++map_generation_;
@@ -528,6 +559,7 @@ UpdateStatus LocalizationFilter::add_handrail(const HandrailMeasurement& m) {
 
   StoredMeasurement& sm = scratch_;
   select_features(m, cfg_.max_bar_features, cfg_.max_wall_features, &sm.handrail);
+  if (as_no_end) sm.handrail.state = HandrailState::kNoEnd;
   align_with_map(pr.x, cfg_.T_body_cam, &sm.handrail);
   NominalState x = pr.x;
   Covariance P = pr.P;

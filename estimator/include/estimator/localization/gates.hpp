@@ -45,6 +45,7 @@ struct FilterCounters {
   std::uint32_t store_evictions = 0;    // stored updates pushed out by newer ones
   std::uint32_t map_restarts = 0;       // an inconsistent sighting restarted the map
   std::uint32_t map_resets = 0;         // the map dropped (rejections, relocalisation)
+  std::uint32_t map_line_replaced = 0;  // a line map dropped for a sighting with an end
   std::uint32_t reinitializations = 0;  // started again from a GP pose (divergence rule)
 
   std::uint32_t count(ImuStatus s) const { return imu[static_cast<std::size_t>(s)]; }

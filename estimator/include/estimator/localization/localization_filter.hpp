@@ -59,11 +59,14 @@
 //     the stored updates, the handrail map and the history before it
 //     dropped. A pose accepted or the handrail holding resets the count.
 //   Handrail. The map (handrail_map.hpp) is built from the first confident
-//     sightings (kMapSighting, kMapInitialized); an NE sighting before it
-//     exists is kNoMap. The map completed goes into the state with the
-//     robot's uncertainty at that time (map_state.hpp), an event stored
-//     with the updates so that a re-propagation across it does it again.
-//     With a map, each measurement is an update
+//     sightings (kMapSighting, kMapInitialized). Sightings with no end seen
+//     build a line map, its origin somewhere on the bar, which serves NE
+//     updates from the first frames on; sightings with an end then count
+//     toward a map placed along the bar (each used as NE meanwhile), which
+//     replaces the line map when complete. The map completed goes into the
+//     state with the robot's uncertainty at that time (map_state.hpp), an
+//     event stored with the updates so that a re-propagation across it does
+//     it again. With a map, each measurement is an update
 //     (handrail_update.hpp); map_reset_after_rejections gate rejections in a
 //     row drop the map (the handrail moved, or the map was wrong), and the
 //     next confident sightings build it again. A surveyed map
@@ -190,7 +193,8 @@ class LocalizationFilter {
   ImuHistory history_;
   MeasurementStore store_;
   HandrailMapBuilder map_;
-  HandrailMap survey_;  // valid when a survey is set
+  HandrailMapBuilder ends_map_;  // counting toward a map with ends, while map_ is a line
+  HandrailMap survey_;           // valid when a survey is set
   std::uint32_t map_generation_ = 0;
   FilterCounters counters_;
   UpdateResult last_;

@@ -28,7 +28,8 @@ enum class UpdateStatus : std::uint8_t {
   kMapSighting,             // a handrail sighting stored to build the map
   kMapInitialized,          // the sighting that completed the handrail map
   kNoMap,                   // handrail seen, but no map yet and this sighting
-                            // cannot start one (no end seen, or pose too uncertain)
+                            // cannot add to one (pose too uncertain, or no end
+                            // seen while sightings with ends are counted)
   kRejectedGate,            // chi-square gate
   kRejectedJump,            // a GP pose agreeing with a jump the gate rejected just
                             // before: held back with it (relocalisation rule)
